@@ -1,0 +1,52 @@
+// A recorded run in the impulse/trajectory@1 format (DESIGN.md): frames of
+// every dynamic body's state at t = 0 and after every full step, and every
+// resolved collision.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace impulse::harness {
+
+inline constexpr const char* trajectory_schema = "impulse/trajectory@1";
+
+struct TrajectoryEvent {
+    double t = 0.0;
+    std::string a;
+    std::string b;
+    double point[2] = {0.0, 0.0};
+    double normal[2] = {0.0, 0.0};
+    double impulse = 0.0;
+    double vn_before = 0.0;
+    double vn_after = 0.0;
+};
+
+// The solver block is kept as ordered (key, JSON text) pairs so that it is
+// written back in the order it was read, whatever simulator produced it.
+struct Trajectory {
+    std::string scene;
+    std::string scene_sha256;
+    std::string engine;
+    std::vector<std::pair<std::string, std::string>> solver; // key -> JSON value text
+    std::vector<std::string> columns;
+    std::vector<std::vector<double>> frames;
+    std::vector<TrajectoryEvent> events;
+};
+
+// FNV-1a 64 over the little-endian bytes of every double's bit pattern, frames
+// row by row, then each event's t, point, normal, impulse, vn_before, vn_after.
+std::uint64_t digest_of(const Trajectory& trajectory);
+// 16 lowercase hex digits.
+std::string digest_hex(std::uint64_t digest);
+
+// Serialises in the fixed key order of DESIGN.md, one frame per line, doubles
+// in shortest round-trip form (-0.0 kept as "-0.0").
+std::string write_trajectory(const Trajectory& trajectory);
+
+// Parses and validates; throws InputError naming `file` and the JSON path.
+// Checks the stored digest against the data.
+Trajectory read_trajectory(const std::string& text, const std::string& file);
+
+} // namespace impulse::harness
