@@ -25,6 +25,8 @@ struct Body {
     bool rotates() const { return inv_inertia != 0.0; }
 };
 
-inline Transform transform_of(const BodyState& s) { return {s.position, rotation_of(s.angle)}; }
+inline Transform transform_of(const BodyState& s) {
+    return {s.position, rotation_of(s.angle)};
+}
 
 } // namespace impulse

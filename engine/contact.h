@@ -20,7 +20,7 @@ struct CollisionEvent {
     int body_a = -1;
     int body_b = -1;
     Vec2 point;
-    Vec2 normal;       // toward body_a
+    Vec2 normal;            // toward body_a
     double impulse = 0.0;   // j, Eq. 6 or Eq. 9
     double vn_before = 0.0; // v1_AB . n, negative (Eq. 2)
     double vn_after = 0.0;  // v2_AB . n

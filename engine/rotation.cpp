@@ -1,1 +1,11 @@
-// placeholder: written in this change
+#include "rotation.h"
+
+#include "trig.h"
+
+namespace impulse {
+
+Rotation rotation_of(double angle) {
+    return {cosine(angle), sine(angle)};
+}
+
+} // namespace impulse

@@ -14,7 +14,9 @@ struct Rotation {
 // same angle gives the same bits on every platform (DESIGN.md, Determinism rule 3).
 Rotation rotation_of(double angle);
 
-constexpr Vec2 rotate(Rotation q, Vec2 v) { return {q.c * v.x - q.s * v.y, q.s * v.x + q.c * v.y}; }
+constexpr Vec2 rotate(Rotation q, Vec2 v) {
+    return {q.c * v.x - q.s * v.y, q.s * v.x + q.c * v.y};
+}
 constexpr Vec2 inverse_rotate(Rotation q, Vec2 v) {
     return {q.c * v.x + q.s * v.y, -q.s * v.x + q.c * v.y};
 }
@@ -24,6 +26,8 @@ struct Transform {
     Rotation q;
 };
 
-constexpr Vec2 apply(const Transform& xf, Vec2 local) { return rotate(xf.q, local) + xf.p; }
+constexpr Vec2 apply(const Transform& xf, Vec2 local) {
+    return rotate(xf.q, local) + xf.p;
+}
 
 } // namespace impulse

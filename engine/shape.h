@@ -1,9 +1,9 @@
 // Collision shapes in body coordinates, with the centre of mass at the origin.
 #pragma once
 
-#include <array>
-
 #include "vec2.h"
+
+#include <array>
 
 namespace impulse {
 
@@ -27,7 +27,7 @@ struct Shape {
 
 struct MassProperties {
     double area = 0.0;
-    Vec2 centroid;                   // in the coordinates the shape was given in
+    Vec2 centroid;                      // in the coordinates the shape was given in
     double inertia_per_unit_mass = 0.0; // about the centroid
 };
 
@@ -41,6 +41,8 @@ Shape make_polygon(const Vec2* vertices, int count);
 MassProperties mass_properties(const Shape& shape);
 
 // Twice the signed area of the triangle (a, b, c): positive when counter-clockwise.
-constexpr double twice_signed_area(Vec2 a, Vec2 b, Vec2 c) { return cross(b - a, c - a); }
+constexpr double twice_signed_area(Vec2 a, Vec2 b, Vec2 c) {
+    return cross(b - a, c - a);
+}
 
 } // namespace impulse

@@ -16,13 +16,13 @@ inline constexpr int contact_mode_count = 1;
 struct SolverSettings {
     Integrator integrator = Integrator::euler;
     TimeOfImpactMethod toi = TimeOfImpactMethod::bisection;
-    double toi_tolerance = 1e-12;     // seconds
-    double contact_tolerance = 1e-9;  // metres
+    double toi_tolerance = 1e-12;    // seconds
+    double contact_tolerance = 1e-9; // metres
     ContactMode contacts = ContactMode::single;
     bool ccd = false;
     bool resting = false;
     // Work bounds that turn a stall into a clear error instead of a hang.
-    int max_halvings = 200;            // per time-of-impact search
+    int max_halvings = 200; // per time-of-impact search
     int max_collisions_per_step = 4096;
 };
 

@@ -4,8 +4,8 @@
 // the last bit, which would make trajectories platform-dependent (DESIGN.md,
 // Determinism rule 3). These use only +, -, * and an exact range reduction, so
 // the result depends on IEEE 754 arithmetic alone. They are within 1 ULP of a
-// correctly rounded result for |x| <= 2^19 * pi / 2; beyond that they stay
-// deterministic but lose accuracy.
+// correctly rounded result for |x| <= 2^20 * pi / 2 (about 1.6e6 rad); beyond
+// that they reduce modulo 2 pi rounded to a double, deterministic but less accurate.
 #pragma once
 
 namespace impulse {

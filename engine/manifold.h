@@ -1,0 +1,33 @@
+// Narrow phase: how two shapes in given poses touch.
+#pragma once
+
+#include "contact.h"
+#include "rotation.h"
+#include "shape.h"
+
+#include <array>
+
+namespace impulse {
+
+// The touching points of a pair. The normal points toward body A (contact.h).
+// Polygon pairs give up to two points (the incident edge clipped to the
+// reference face, so every point is a vertex of one body on an edge of the
+// other: Hecker's vertex/edge contact); circle pairs give one.
+struct Manifold {
+    Vec2 normal;
+    double separation = 0.0; // signed gap of the pair: negative when they interpenetrate
+    int point_count = 0;
+    std::array<Contact, 2> points{};
+};
+
+// Signed gap between two shapes: for polygons the separating-axis maximum over
+// every edge normal, which is negative exactly when they overlap. This is all
+// the time-of-impact search needs.
+double separation(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb);
+
+// The contact points of a pair whose separation is within contact_tolerance:
+// only points at most contact_tolerance apart are reported.
+Manifold collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
+                 double contact_tolerance);
+
+} // namespace impulse
