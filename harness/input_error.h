@@ -8,7 +8,7 @@
 namespace impulse::harness {
 
 class InputError : public std::runtime_error {
-public:
+  public:
     // Renders "FILE: PATH: MESSAGE" (or "FILE: MESSAGE" when path is empty).
     InputError(const std::string& file, const std::string& json_path, const std::string& message);
 };

@@ -1,1 +1,990 @@
-// placeholder: written in this change
+// Loading and validating impulse/scene@1 (DESIGN.md, "Scene format").
+//
+// Every problem becomes one InputError naming the file and the JSON path of the
+// first thing wrong, so the command-line tool can exit with code 2 and one
+// clear sentence. The reader checks each value's JSON type before reading it:
+// no nlohmann exception ever escapes. Checks run in the order the format lists
+// its rules, and within a list in document order, so the first problem named is
+// the one a person reading the file top to bottom meets first.
+#include "scene.h"
+
+#include "atomic_file.h"
+#include "body.h"
+#include "input_error.h"
+#include "manifold.h"
+#include "rotation.h"
+#include "sha256.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+namespace impulse::harness {
+
+namespace {
+
+// std::map-backed objects: keys sorted, which is what makes dump() canonical
+// for the scene's fingerprint.
+using Json = nlohmann::json;
+
+// A scene is a few kilobytes; anything near this is a mistake, not a scene.
+constexpr std::size_t max_file_bytes = std::size_t{16} * 1024 * 1024;
+// nlohmann and every recursive walk of the document recurse per level; a
+// scene needs six (root, bodies, body, shape, polygon, vertex).
+constexpr int max_nesting_depth = 64;
+constexpr std::size_t max_name_length = 64;
+constexpr int min_polygon_vertices = 3;
+// A polygon whose centroid is further than this fraction of its size from the
+// origin is recentred (DESIGN.md: "centroid at the origin or recentred").
+constexpr double centroid_tolerance = 1e-9;
+
+// ---------------------------------------------------------------- text
+
+// Shortest text that reads back to the same double (std::to_chars), so a
+// value quoted in a message is exactly the value the file holds.
+std::string number_text(double value) {
+    char buffer[32];
+    const std::to_chars_result result = std::to_chars(buffer, buffer + sizeof buffer, value);
+    return std::string(buffer, result.ptr);
+}
+
+bool is_ascii_letter_or_digit(char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+}
+
+// Keys that are plain identifiers are written `.key`; anything else (spaces,
+// dots, control characters) as `["key"]`, JSON-escaped, so a path is always one
+// unambiguous line.
+std::string member_path(const std::string& parent, const std::string& key) {
+    const bool plain = !key.empty() && std::all_of(key.begin(), key.end(), [](char c) {
+        return is_ascii_letter_or_digit(c) || c == '_';
+    });
+    if (!plain) {
+        return parent + "[" + Json(key).dump() + "]";
+    }
+    return parent.empty() ? key : parent + "." + key;
+}
+
+std::string element_path(const std::string& parent, std::size_t index) {
+    return parent + "[" + std::to_string(index) + "]";
+}
+
+// What a value is, for "must be X, got Y": numbers and short strings verbatim,
+// containers by kind.
+std::string describe(const Json& value) {
+    constexpr std::size_t max_shown = 40;
+    switch (value.type()) {
+    case Json::value_t::null:
+        return "null";
+    case Json::value_t::boolean:
+        return value.get<bool>() ? "true" : "false";
+    case Json::value_t::number_integer:
+    case Json::value_t::number_unsigned:
+    case Json::value_t::number_float:
+        return number_text(value.get<double>());
+    case Json::value_t::string: {
+        std::string text = value.dump();
+        if (text.size() > max_shown) {
+            text = text.substr(0, max_shown) + "...\"";
+        }
+        return text;
+    }
+    case Json::value_t::array:
+        return "an array";
+    case Json::value_t::object:
+        return "an object";
+    default:
+        return "an unsupported value";
+    }
+}
+
+// Levenshtein distance, for "did you mean" on a mistyped key.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) {
+        row[j] = j;
+    }
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t above = row[j];
+            const std::size_t substitution = diagonal + (a[i - 1] == b[j - 1] ? 0 : 1);
+            row[j] = std::min({above + 1, row[j - 1] + 1, substitution});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
+// ---------------------------------------------------------------- the text before JSON
+
+// A scene committed in the middle of a merge must say so, not "invalid JSON".
+void reject_merge_conflict_markers(const std::string& text, const std::string& file) {
+    std::size_t line = 1;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        for (const char* marker : {"<<<<<<<", "=======", ">>>>>>>"}) {
+            if (text.compare(start, 7, marker) == 0) {
+                throw InputError(file, "",
+                                 "has a merge-conflict marker at line " + std::to_string(line));
+            }
+        }
+        const std::size_t end = text.find('\n', start);
+        if (end == std::string::npos) {
+            break;
+        }
+        start = end + 1;
+        ++line;
+    }
+}
+
+// Counts brackets outside strings before nlohmann sees the text, so a
+// pathological file ("[[[[...") is refused instead of exhausting the stack.
+void reject_deep_nesting(const std::string& text, const std::string& file) {
+    int depth = 0;
+    bool in_string = false;
+    bool escaped = false;
+    for (const char c : text) {
+        if (in_string) {
+            if (escaped) {
+                escaped = false;
+            } else if (c == '\\') {
+                escaped = true;
+            } else if (c == '"') {
+                in_string = false;
+            }
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > max_nesting_depth) {
+                throw InputError(file, "",
+                                 "is nested too deeply: more than " +
+                                     std::to_string(max_nesting_depth) +
+                                     " levels of arrays and objects");
+            }
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+}
+
+// nlohmann's message, e.g. "[json.exception.parse_error.101] parse error at
+// line 1, column 10: syntax error while parsing value - invalid literal; last
+// read: '"a": tru}'", cut to "line 1, column 10: invalid literal while parsing
+// value". The "last read" excerpt is dropped: it repeats raw file bytes, which
+// may be control characters or broken UTF-8.
+std::string shorten_parse_error(std::string message) {
+    const std::size_t tag_end = message.find("] ");
+    if (message.rfind("[json.exception.", 0) == 0 && tag_end != std::string::npos) {
+        message.erase(0, tag_end + 2);
+    }
+    if (message.rfind("parse error at ", 0) == 0) {
+        message.erase(0, std::string("parse error at ").size());
+    }
+    const std::string last_read = "; last read: '";
+    const std::size_t excerpt = message.find(last_read);
+    if (excerpt != std::string::npos) {
+        const std::size_t expected = message.rfind("'; expected ");
+        const std::size_t cut_end =
+            expected != std::string::npos && expected >= excerpt + last_read.size()
+                ? expected + 1
+                : message.size();
+        message.erase(excerpt, cut_end - excerpt);
+    }
+    // "syntax error while parsing X - REASON" reads better as "REASON while parsing X".
+    const std::string syntax = "syntax error while parsing ";
+    const std::size_t where = message.find(syntax);
+    if (where != std::string::npos) {
+        const std::size_t dash = message.find(" - ", where);
+        if (dash != std::string::npos) {
+            const std::size_t reason_end = std::min(message.find("; ", dash), message.size());
+            const std::string what =
+                message.substr(where + syntax.size(), dash - where - syntax.size());
+            const std::string reason = message.substr(dash + 3, reason_end - dash - 3);
+            message.replace(where, reason_end - where, reason + " while parsing " + what);
+        }
+    }
+    for (char& c : message) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte < 0x20 || byte >= 0x7f) {
+            c = '?';
+        }
+    }
+    return message;
+}
+
+// Follows the parser's callbacks to know the JSON path of every key, so that a
+// repeated key (which nlohmann would otherwise resolve silently by keeping one
+// value) is reported where it is. Only the first repeat is kept: it is the
+// first in the document.
+class DuplicateKeyFinder {
+  public:
+    bool on_event(nlohmann::json::parse_event_t event, const Json& parsed) {
+        using Event = nlohmann::json::parse_event_t;
+        switch (event) {
+        case Event::object_start:
+            frames_.push_back({path_of_next_value(), true, {}, {}, 0});
+            break;
+        case Event::array_start:
+            frames_.push_back({path_of_next_value(), false, {}, {}, 0});
+            break;
+        case Event::key: {
+            Frame& object = frames_.back();
+            object.key = parsed.get<std::string>();
+            if (!object.keys.insert(object.key).second && !first_duplicate_) {
+                first_duplicate_ = member_path(object.path, object.key);
+            }
+            break;
+        }
+        case Event::object_end:
+        case Event::array_end:
+            frames_.pop_back();
+            value_done();
+            break;
+        case Event::value:
+            value_done();
+            break;
+        }
+        return true;
+    }
+
+    const std::optional<std::string>& first_duplicate() const { return first_duplicate_; }
+
+  private:
+    struct Frame {
+        std::string path;
+        bool is_object;
+        std::set<std::string> keys;
+        std::string key;   // objects: the key whose value comes next
+        std::size_t index; // arrays: the index of the value that comes next
+    };
+
+    std::string path_of_next_value() const {
+        if (frames_.empty()) {
+            return "";
+        }
+        const Frame& parent = frames_.back();
+        return parent.is_object ? member_path(parent.path, parent.key)
+                                : element_path(parent.path, parent.index);
+    }
+
+    void value_done() {
+        if (!frames_.empty() && !frames_.back().is_object) {
+            ++frames_.back().index;
+        }
+    }
+
+    std::vector<Frame> frames_;
+    std::optional<std::string> first_duplicate_;
+};
+
+Json parse_json(const std::string& text, const std::string& file) {
+    DuplicateKeyFinder finder;
+    Json document;
+    try {
+        document =
+            Json::parse(text, [&finder](int, nlohmann::json::parse_event_t event, Json& parsed) {
+                return finder.on_event(event, parsed);
+            });
+    } catch (const nlohmann::json::exception& error) {
+        // parse_error for syntax, out_of_range for a number too large for a double.
+        throw InputError(file, "", "not valid JSON: " + shorten_parse_error(error.what()));
+    }
+    if (finder.first_duplicate()) {
+        throw InputError(file, *finder.first_duplicate(),
+                         "appears more than once in the same object; keys must be unique");
+    }
+    return document;
+}
+
+// ---------------------------------------------------------------- reading values
+
+// A value in the document and the JSON path that leads to it: everything a
+// message needs to name where a problem is.
+class Node {
+  public:
+    Node(const Json& value, std::string path, const std::string& file)
+        : value_(&value), path_(std::move(path)), file_(&file) {}
+
+    const Json& json() const { return *value_; }
+    const std::string& path() const { return path_; }
+    const std::string& file() const { return *file_; }
+
+    [[noreturn]] void fail(const std::string& message) const {
+        throw InputError(*file_, path_, message);
+    }
+
+    // Callers have checked that this is an object / array.
+    bool has(const std::string& key) const { return value_->contains(key); }
+    Node member(const std::string& key) const {
+        return Node(value_->at(key), member_path(path_, key), *file_);
+    }
+    Node element(std::size_t index) const {
+        return Node(value_->at(index), element_path(path_, index), *file_);
+    }
+    // The path a missing key would have, for "is required".
+    std::string path_of(const std::string& key) const { return member_path(path_, key); }
+
+  private:
+    const Json* value_;
+    std::string path_;
+    const std::string* file_;
+};
+
+void require_object(const Node& node) {
+    if (!node.json().is_object()) {
+        node.fail("must be an object, got " + describe(node.json()));
+    }
+}
+
+void require_array(const Node& node) {
+    if (!node.json().is_array()) {
+        node.fail("must be an array, got " + describe(node.json()));
+    }
+}
+
+std::optional<Node> optional_member(const Node& object, const std::string& key) {
+    if (!object.has(key)) {
+        return std::nullopt;
+    }
+    return object.member(key);
+}
+
+Node required_member(const Node& object, const std::string& key) {
+    if (!object.has(key)) {
+        throw InputError(object.file(), object.path_of(key), "is required but missing");
+    }
+    return object.member(key);
+}
+
+std::string list_of(const std::vector<std::string>& names) {
+    std::string out;
+    for (const std::string& name : names) {
+        out += (out.empty() ? "" : ", ") + name;
+    }
+    return out;
+}
+
+// Typos must not pass silently (DESIGN.md): every key must be one the format knows.
+void reject_unknown_keys(const Node& object, const std::vector<std::string>& known) {
+    for (const auto& [key, value] : object.json().items()) {
+        if (std::find(known.begin(), known.end(), key) != known.end()) {
+            continue;
+        }
+        // Suggest the closest known key when it is a plausible typo: at most two
+        // edits, and fewer than half the key's length (so "x" suggests nothing).
+        std::string message = "unknown key; ";
+        std::size_t best = 3;
+        for (const std::string& candidate : known) {
+            const std::size_t distance = edit_distance(key, candidate);
+            if (distance < best && 2 * distance < key.size()) {
+                best = distance;
+                message = "unknown key (did you mean " + candidate + "?); ";
+            }
+        }
+        object.member(key).fail(message + "expected one of " + list_of(known));
+    }
+}
+
+std::string read_string(const Node& node) {
+    if (!node.json().is_string()) {
+        node.fail("must be a string, got " + describe(node.json()));
+    }
+    return node.json().get<std::string>();
+}
+
+bool read_bool(const Node& node) {
+    if (!node.json().is_boolean()) {
+        node.fail("must be true or false, got " + describe(node.json()));
+    }
+    return node.json().get<bool>();
+}
+
+double read_number(const Node& node) {
+    if (!node.json().is_number()) {
+        node.fail("must be a number, got " + describe(node.json()));
+    }
+    const double value = node.json().get<double>();
+    if (!std::isfinite(value)) {
+        node.fail("must be a finite number, got " + number_text(value));
+    }
+    return value;
+}
+
+double read_positive(const Node& node) {
+    const double value = read_number(node);
+    if (!(value > 0.0)) {
+        node.fail("must be > 0, got " + number_text(value));
+    }
+    return value;
+}
+
+// [x, y]
+Vec2 read_vec2(const Node& node) {
+    if (!node.json().is_array() || node.json().size() != 2) {
+        node.fail("must be an array of two numbers [x, y], got " + describe(node.json()));
+    }
+    return {read_number(node.element(0)), read_number(node.element(1))};
+}
+
+// Optional values with their documented defaults.
+std::string read_string_or(const Node& object, const std::string& key, std::string fallback) {
+    const std::optional<Node> node = optional_member(object, key);
+    return node ? read_string(*node) : fallback;
+}
+bool read_bool_or(const Node& object, const std::string& key, bool fallback) {
+    const std::optional<Node> node = optional_member(object, key);
+    return node ? read_bool(*node) : fallback;
+}
+double read_number_or(const Node& object, const std::string& key, double fallback) {
+    const std::optional<Node> node = optional_member(object, key);
+    return node ? read_number(*node) : fallback;
+}
+double read_positive_or(const Node& object, const std::string& key, double fallback) {
+    const std::optional<Node> node = optional_member(object, key);
+    return node ? read_positive(*node) : fallback;
+}
+Vec2 read_vec2_or(const Node& object, const std::string& key, Vec2 fallback) {
+    const std::optional<Node> node = optional_member(object, key);
+    return node ? read_vec2(*node) : fallback;
+}
+
+// ---------------------------------------------------------------- the scene's fields
+
+// Scene and body names become file names (goldens/NAME.json) and column
+// prefixes (NAME.x), so they are kept to characters that cannot leave the
+// goldens folder or break a column name: no slash, no leading dot.
+bool is_valid_name(const std::string& name) {
+    if (name.empty() || name.size() > max_name_length || !is_ascii_letter_or_digit(name[0])) {
+        return false;
+    }
+    return std::all_of(name.begin(), name.end(), [](char c) {
+        return is_ascii_letter_or_digit(c) || c == '.' || c == '_' || c == '-';
+    });
+}
+
+std::string read_name(const Node& node) {
+    const std::string name = read_string(node);
+    if (!is_valid_name(name)) {
+        node.fail("must be 1 to 64 letters, digits, '.', '_' or '-', starting with a letter or "
+                  "digit, got " +
+                  describe(node.json()));
+    }
+    return name;
+}
+
+void read_schema(const Node& root) {
+    const std::string wanted = scene_schema;
+    if (!root.has("schema")) {
+        throw InputError(root.file(), "schema",
+                         "is required but missing; a scene file declares \"schema\": \"" + wanted +
+                             "\"");
+    }
+    const Node node = root.member("schema");
+    if (node.json().is_string()) {
+        const std::string schema = node.json().get<std::string>();
+        if (schema == wanted) {
+            return;
+        }
+        const std::string family = "impulse/scene@";
+        if (schema.rfind(family, 0) == 0) {
+            node.fail("unsupported scene version " + describe(node.json()) +
+                      "; this build reads \"" + wanted + "\"");
+        }
+    }
+    node.fail("not a scene: expected \"" + wanted + "\", got " + describe(node.json()));
+}
+
+double read_restitution(const Node& root) {
+    const double e = read_number_or(root, "restitution", 1.0);
+    if (e < 0.0 || e > 1.0) {
+        root.member("restitution").fail("must be between 0 and 1, got " + number_text(e));
+    }
+    return e;
+}
+
+// duration / dt, in double so that an absurd ratio is reported rather than
+// overflowing a long long (see step_count in scene.h for the rounding).
+double steps_for(double duration, double dt) {
+    const double ratio = duration / dt;
+    const double nearest = std::round(ratio);
+    return std::abs(ratio - nearest) <= 1e-9 ? nearest : std::ceil(ratio);
+}
+
+void read_time(const Node& root, Scene& scene) {
+    scene.dt = read_positive(required_member(root, "dt"));
+    const Node duration = required_member(root, "duration");
+    scene.duration = read_positive(duration);
+    if (scene.duration < scene.dt) {
+        duration.fail("must be >= dt (" + number_text(scene.dt) + "), got " +
+                      number_text(scene.duration));
+    }
+    const double steps = steps_for(scene.duration, scene.dt);
+    if (steps > static_cast<double>(max_steps)) {
+        // Whole numbers of steps below 2^53 are written as integers ("100000000",
+        // not "1e+08"); beyond that the double's shortest form is all there is.
+        const bool exact = steps < 9007199254740992.0;
+        const std::string count =
+            exact ? std::to_string(static_cast<long long>(steps)) : number_text(steps);
+        duration.fail("duration / dt gives " + count + " steps; at most " +
+                      std::to_string(max_steps) + " are allowed");
+    }
+}
+
+// For the solver settings that have a single value in this version: the key
+// is accepted so scenes can state it, but anything else is refused with why.
+void require_only(const Node& node, const Json& only, const std::string& why) {
+    if (node.json() != only) {
+        node.fail("must be " + only.dump() + ": " + why);
+    }
+}
+
+void read_solver(const Node& node, SolverSettings& solver) {
+    require_object(node);
+    reject_unknown_keys(node, {"integrator", "toi", "toi_tolerance", "contact_tolerance",
+                               "contacts", "ccd", "resting"});
+    if (const std::optional<Node> integrator = optional_member(node, "integrator")) {
+        if (!integrator->json().is_string() ||
+            !integrator_from_name(integrator->json().get<std::string>(), solver.integrator)) {
+            integrator->fail(
+                "must be one of \"euler\", \"symplectic-euler\", \"verlet\", \"rk4\", got " +
+                describe(integrator->json()));
+        }
+    }
+    if (const std::optional<Node> toi = optional_member(node, "toi")) {
+        require_only(*toi, "bisection", "the only time-of-impact search in this version");
+    }
+    solver.toi_tolerance = read_positive_or(node, "toi_tolerance", solver.toi_tolerance);
+    solver.contact_tolerance =
+        read_positive_or(node, "contact_tolerance", solver.contact_tolerance);
+    if (const std::optional<Node> contacts = optional_member(node, "contacts")) {
+        require_only(*contacts, "single", "this version models one contact point at a time");
+    }
+    if (const std::optional<Node> ccd = optional_member(node, "ccd")) {
+        require_only(*ccd, false, "this version does not catch tunnelling between steps");
+    }
+    if (const std::optional<Node> resting = optional_member(node, "resting")) {
+        require_only(*resting, false, "this version does not model resting contact");
+    }
+}
+
+// ---------------------------------------------------------------- shapes
+
+Shape read_box(const Node& node) {
+    if (!node.json().is_array() || node.json().size() != 2) {
+        node.fail("must be the half extents [hx, hy], got " + describe(node.json()));
+    }
+    return make_box(read_positive(node.element(0)), read_positive(node.element(1)));
+}
+
+// make_polygon assumes a convex counter-clockwise outline traced once; these
+// checks are what make that assumption true.
+void require_distinct_neighbours(const Node& node, const std::vector<Vec2>& v) {
+    const std::size_t n = v.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t previous = (i + n - 1) % n;
+        if (v[i] == v[previous]) {
+            node.element(i).fail("repeats vertex " + std::to_string(previous) +
+                                 "; consecutive vertices must differ");
+        }
+    }
+}
+
+double twice_area(const std::vector<Vec2>& v) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        sum += cross(v[i], v[(i + 1) % v.size()]);
+    }
+    return sum;
+}
+
+void require_counter_clockwise(const Node& node, const std::vector<Vec2>& v) {
+    const double area = 0.5 * twice_area(v);
+    if (!(area > 0.0)) {
+        node.fail("vertices must be counter-clockwise (positive area), got area " +
+                  number_text(area));
+    }
+}
+
+// Every corner turns left: cross(edge in, edge out) > 0. Zero (collinear) and
+// negative (reflex) are both refused: a collinear vertex gives a zero-length
+// normal pair that the contact code would treat as two faces.
+void require_left_turns(const Node& node, const std::vector<Vec2>& v) {
+    const std::size_t n = v.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        const double turn = twice_signed_area(v[(i + n - 1) % n], v[i], v[(i + 1) % n]);
+        if (turn == 0.0) {
+            node.element(i).fail("is collinear with its neighbours; the polygon must be "
+                                 "strictly convex");
+        }
+        if (turn < 0.0) {
+            node.element(i).fail("is a reflex corner (turns right); the polygon must be convex "
+                                 "with counter-clockwise vertices");
+        }
+    }
+}
+
+// Left turns everywhere still allow a star that winds round twice; a convex
+// outline traced once has every vertex on the inner side of every edge.
+void require_simple(const Node& node, const std::vector<Vec2>& v) {
+    const std::size_t n = v.size();
+    for (std::size_t edge = 0; edge < n; ++edge) {
+        const Vec2 a = v[edge];
+        const Vec2 b = v[(edge + 1) % n];
+        for (std::size_t k = 0; k < n; ++k) {
+            if (k != edge && k != (edge + 1) % n && !(twice_signed_area(a, b, v[k]) > 0.0)) {
+                node.fail("winds around more than once (the outline crosses itself); a convex "
+                          "polygon's vertices go round once");
+            }
+        }
+    }
+}
+
+Shape read_polygon(const Node& node) {
+    require_array(node);
+    const std::size_t n = node.json().size();
+    if (n < static_cast<std::size_t>(min_polygon_vertices) ||
+        n > static_cast<std::size_t>(max_polygon_vertices)) {
+        node.fail("must have " + std::to_string(min_polygon_vertices) + " to " +
+                  std::to_string(max_polygon_vertices) + " vertices, got " + std::to_string(n));
+    }
+    std::vector<Vec2> vertices;
+    for (std::size_t i = 0; i < n; ++i) {
+        vertices.push_back(read_vec2(node.element(i)));
+    }
+    require_distinct_neighbours(node, vertices);
+    require_counter_clockwise(node, vertices);
+    require_left_turns(node, vertices);
+    require_simple(node, vertices);
+    return make_polygon(vertices.data(), static_cast<int>(n));
+}
+
+Shape read_shape(const Node& node) {
+    require_object(node);
+    const std::vector<std::string> kinds = {"box", "circle", "polygon"};
+    reject_unknown_keys(node, kinds);
+    std::optional<std::string> kind;
+    for (const std::string& candidate : kinds) {
+        if (!node.has(candidate)) {
+            continue;
+        }
+        if (kind) {
+            node.member(candidate).fail("a shape is exactly one of box, circle or polygon; this "
+                                        "one also has " +
+                                        *kind);
+        }
+        kind = candidate;
+    }
+    if (!kind) {
+        node.fail("must have one of box, circle or polygon");
+    }
+    const Node value = node.member(*kind);
+    if (*kind == "box") {
+        return read_box(value);
+    }
+    if (*kind == "circle") {
+        return make_circle(read_positive(value));
+    }
+    return read_polygon(value);
+}
+
+// The engine puts a body's centre of mass at its shape's origin. A polygon
+// given around some other point is moved so its centroid is the origin, and
+// the body's position moved by the same offset (turned by the body's angle) so
+// every vertex stays where the file put it in the world.
+void recentre_polygon(SceneBody& body, const std::string& shape_path, const std::string& file,
+                      std::vector<std::string>& warnings) {
+    if (body.shape.type != ShapeType::polygon) {
+        return;
+    }
+    const Polygon& polygon = body.shape.polygon;
+    double size = 0.0;
+    for (int i = 0; i < polygon.count; ++i) {
+        size = std::max(size, length(polygon.vertices[static_cast<std::size_t>(i)]));
+    }
+    const Vec2 centroid = mass_properties(body.shape).centroid;
+    if (!(length(centroid) > centroid_tolerance * size)) {
+        return;
+    }
+    std::vector<Vec2> moved;
+    for (int i = 0; i < polygon.count; ++i) {
+        moved.push_back(polygon.vertices[static_cast<std::size_t>(i)] - centroid);
+    }
+    body.shape = make_polygon(moved.data(), polygon.count);
+    body.position += rotate(rotation_of(body.angle), centroid);
+    warnings.push_back(file + ": " + shape_path + ".polygon: centroid is at (" +
+                       number_text(centroid.x) + ", " + number_text(centroid.y) +
+                       "), not at the origin; vertices recentred and position moved to keep "
+                       "the body in place");
+}
+
+// ---------------------------------------------------------------- bodies
+
+const std::vector<std::string> body_keys = {
+    "name", "static",  "shape",   "position", "angle", "velocity", "angular_velocity",
+    "mass", "density", "inertia", "rotation"};
+
+// A static body has infinite mass and never moves, so anything describing its
+// mass or motion would be ignored; saying so beats ignoring it.
+void reject_motion_of_static_body(const Node& node) {
+    for (const char* key :
+         {"velocity", "angular_velocity", "mass", "density", "inertia", "rotation"}) {
+        if (node.has(key)) {
+            node.member(key).fail(std::string("a static body has infinite mass and does not "
+                                              "move; remove ") +
+                                  key);
+        }
+    }
+}
+
+// What the file says about a dynamic body's mass; resolved against the shape
+// once the shape is final.
+struct MassSpec {
+    std::optional<double> mass;
+    std::optional<double> density;
+    std::optional<double> inertia;
+};
+
+MassSpec read_dynamics(const Node& node, SceneBody& body) {
+    body.velocity = read_vec2_or(node, "velocity", {});
+    body.angular_velocity = read_number_or(node, "angular_velocity", 0.0);
+    MassSpec spec;
+    if (const std::optional<Node> mass = optional_member(node, "mass")) {
+        spec.mass = read_positive(*mass);
+    }
+    if (const std::optional<Node> density = optional_member(node, "density")) {
+        spec.density = read_positive(*density);
+        if (spec.mass) {
+            density->fail("give mass or density, not both");
+        }
+    }
+    body.rotation = read_bool_or(node, "rotation", true);
+    if (const std::optional<Node> inertia = optional_member(node, "inertia")) {
+        if (!body.rotation) {
+            inertia->fail("a body with \"rotation\": false has infinite inertia; remove inertia");
+        }
+        spec.inertia = read_positive(*inertia);
+    }
+    if (!body.rotation && body.angular_velocity != 0.0) {
+        node.member("angular_velocity")
+            .fail("must be 0 for a body with \"rotation\": false, got " +
+                  number_text(body.angular_velocity));
+    }
+    return spec;
+}
+
+void resolve_mass(const Node& node, const MassSpec& spec, SceneBody& body) {
+    const MassProperties shape = mass_properties(body.shape);
+    // A body that gives neither mass nor density has density 1 (kg per square
+    // metre), so the simplest scene needs no mass at all.
+    body.mass = spec.mass ? *spec.mass : spec.density.value_or(1.0) * shape.area;
+    if (!std::isfinite(body.mass) || !(body.mass > 0.0)) {
+        node.fail("its shape and density give a mass of " + number_text(body.mass) +
+                  " kg; it must be finite and > 0");
+    }
+    if (!body.rotation) {
+        body.inertia = 0.0; // infinite: SceneBody::rotation says so
+        return;
+    }
+    body.inertia = spec.inertia ? *spec.inertia : body.mass * shape.inertia_per_unit_mass;
+    if (!std::isfinite(body.inertia) || !(body.inertia > 0.0)) {
+        node.fail("its shape and mass give a moment of inertia of " + number_text(body.inertia) +
+                  " kg m^2; it must be finite and > 0");
+    }
+}
+
+// Reads bodies[i]; `scene` holds the bodies before it (for unique names) and
+// collects warnings.
+SceneBody read_body(const Node& node, Scene& scene) {
+    require_object(node);
+    reject_unknown_keys(node, body_keys);
+    SceneBody body;
+    const Node name = required_member(node, "name");
+    body.name = read_name(name);
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+        if (scene.bodies[i].name == body.name) {
+            name.fail("\"" + body.name + "\" is already the name of bodies[" + std::to_string(i) +
+                      "]; body names must be unique");
+        }
+    }
+    body.is_static = read_bool_or(node, "static", false);
+    const Node shape = required_member(node, "shape");
+    body.shape = read_shape(shape);
+    body.position = read_vec2_or(node, "position", {});
+    body.angle = read_number_or(node, "angle", 0.0);
+    MassSpec mass;
+    if (body.is_static) {
+        reject_motion_of_static_body(node);
+    } else {
+        mass = read_dynamics(node, body);
+    }
+    recentre_polygon(body, shape.path(), scene.file, scene.warnings);
+    if (!body.is_static) {
+        resolve_mass(node, mass, body);
+    }
+    return body;
+}
+
+BodyState initial_state(const SceneBody& body) {
+    BodyState state;
+    state.position = body.position;
+    state.angle = body.angle;
+    return state;
+}
+
+// The engine resolves collisions as they happen; bodies already interpenetrating
+// at t = 0 have no collision time, so the run would be meaningless. Touching is
+// fine. Static bodies may overlap one another (walls meeting in a corner).
+void reject_initial_overlaps(const Node& bodies, const std::vector<SceneBody>& scene_bodies) {
+    for (std::size_t j = 1; j < scene_bodies.size(); ++j) {
+        const SceneBody& b = scene_bodies[j];
+        const Transform xb = transform_of(initial_state(b));
+        for (std::size_t i = 0; i < j; ++i) {
+            const SceneBody& a = scene_bodies[i];
+            if (a.is_static && b.is_static) {
+                continue;
+            }
+            const double gap = separation(a.shape, transform_of(initial_state(a)), b.shape, xb);
+            if (gap < 0.0) {
+                bodies.element(j).fail("'" + b.name + "' overlaps bodies[" + std::to_string(i) +
+                                       "] '" + a.name + "' at t = 0 by " + number_text(-gap) +
+                                       " m");
+            }
+        }
+    }
+}
+
+void read_bodies(const Node& node, Scene& scene) {
+    require_array(node);
+    if (node.json().empty()) {
+        node.fail("must list at least one body");
+    }
+    for (std::size_t i = 0; i < node.json().size(); ++i) {
+        scene.bodies.push_back(read_body(node.element(i), scene));
+    }
+    const bool all_static = std::all_of(scene.bodies.begin(), scene.bodies.end(),
+                                        [](const SceneBody& body) { return body.is_static; });
+    if (all_static) {
+        node.fail("every body is static, so nothing would move; at least one body must be "
+                  "dynamic");
+    }
+    reject_initial_overlaps(node, scene.bodies);
+}
+
+const std::vector<std::string> scene_keys = {"schema",   "name",        "description",
+                                             "gravity",  "restitution", "dt",
+                                             "duration", "solver",      "bodies"};
+
+Scene read_scene(const Node& root) {
+    if (!root.json().is_object()) {
+        root.fail("the top level must be a JSON object, got " + describe(root.json()));
+    }
+    // The schema comes before the unknown-key check: a trajectory file or a
+    // newer scene version given by mistake should be named as such, not as a
+    // list of unknown keys.
+    read_schema(root);
+    reject_unknown_keys(root, scene_keys);
+    Scene scene;
+    scene.file = root.file();
+    scene.name = read_name(required_member(root, "name"));
+    scene.description = read_string_or(root, "description", "");
+    scene.gravity = read_vec2_or(root, "gravity", scene.gravity);
+    scene.restitution = read_restitution(root);
+    read_time(root, scene);
+    if (const std::optional<Node> solver = optional_member(root, "solver")) {
+        read_solver(*solver, scene.solver);
+    }
+    read_bodies(required_member(root, "bodies"), scene);
+    return scene;
+}
+
+} // namespace
+
+Scene load_scene(const std::string& path) {
+    return parse_scene(read_file(path, max_file_bytes, "a scene is a few kilobytes"), path);
+}
+
+// Every number as a double, so `3` and `3.0` (the same scene) hash alike.
+Json canonical(const Json& value) {
+    if (value.is_number()) {
+        return Json(value.get<double>());
+    }
+    if (value.is_array() || value.is_object()) {
+        Json out = value;
+        for (auto& item : out) {
+            item = canonical(item);
+        }
+        return out;
+    }
+    return value;
+}
+
+Scene parse_scene(const std::string& text, const std::string& file) {
+    reject_merge_conflict_markers(text, file);
+    reject_deep_nesting(text, file);
+    const Json document = parse_json(text, file);
+    Scene scene = read_scene(Node(document, "", file));
+    // Sorted keys and no whitespace: the same content gives the same
+    // fingerprint however the file is laid out.
+    scene.sha256 = sha256_hex(canonical(document).dump());
+    return scene;
+}
+
+long long step_count(const Scene& scene) {
+    return static_cast<long long>(steps_for(scene.duration, scene.dt));
+}
+
+const char* integrator_name(Integrator integrator) {
+    switch (integrator) {
+    case Integrator::euler:
+        return "euler";
+    case Integrator::symplectic_euler:
+        return "symplectic-euler";
+    case Integrator::verlet:
+        return "verlet";
+    case Integrator::rk4:
+        return "rk4";
+    }
+    return "unknown";
+}
+
+const char* toi_method_name(TimeOfImpactMethod method) {
+    switch (method) {
+    case TimeOfImpactMethod::bisection:
+        return "bisection";
+    }
+    return "unknown";
+}
+
+const char* contact_mode_name(ContactMode mode) {
+    switch (mode) {
+    case ContactMode::single:
+        return "single";
+    }
+    return "unknown";
+}
+
+bool integrator_from_name(const std::string& name, Integrator& out) {
+    for (int i = 0; i < integrator_count; ++i) {
+        const auto candidate = static_cast<Integrator>(i);
+        if (name == integrator_name(candidate)) {
+            out = candidate;
+            return true;
+        }
+    }
+    return false;
+}
+
+} // namespace impulse::harness

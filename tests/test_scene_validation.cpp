@@ -1,1 +1,868 @@
+// Scene loading and validation (DESIGN.md, "Scene format"): every documented
+// default, the derived mass properties, polygon recentring, the fingerprint,
+// and one case per rejected input, each checked for the file name, the exact
+// JSON path and the reason.
+#include "input_error.h"
+#include "rotation.h"
+#include "scene.h"
+#include "sha256.h"
+
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <string>
+
+using impulse::Integrator;
+using impulse::ShapeType;
+using impulse::Vec2;
+using impulse::harness::InputError;
+using impulse::harness::load_scene;
+using impulse::harness::parse_scene;
+using impulse::harness::Scene;
+using impulse::harness::step_count;
+
+namespace {
+
+const std::string test_file = "scenes/test.json";
+
+// A valid scene with one dynamic disc; `extra` is spliced in among the
+// top-level keys (end it with a comma).
+std::string scene_with(const std::string& extra) {
+    return R"({"schema": "impulse/scene@1", "name": "t", "dt": 0.01, "duration": 1, )" + extra +
+           R"( "bodies": [{"name": "ball", "shape": {"circle": 0.5}}]})";
+}
+
+// A valid scene header around the given bodies array.
+std::string scene_with_bodies(const std::string& bodies) {
+    return R"({"schema": "impulse/scene@1", "name": "t", "dt": 0.01, "duration": 1, "bodies": )" +
+           bodies + "}";
+}
+
+// A scene whose only body is {"name": "b", FIELDS}.
+std::string scene_with_body(const std::string& fields) {
+    return scene_with_bodies(R"([{"name": "b", )" + fields + "}]");
+}
+
+// The InputError message parse_scene gives for `text`, or "" when it accepts
+// the scene. Any other exception escapes and fails the test.
+std::string rejection(const std::string& text, const std::string& file = test_file) {
+    try {
+        parse_scene(text, file);
+    } catch (const InputError& error) {
+        return error.what();
+    }
+    return "";
+}
+
+// parse_scene refuses `text` with "FILE: PATH: ..." (or "FILE: ..." for an
+// empty path) and a message containing `reason`.
+void require_rejected(const std::string& text, const std::string& path, const std::string& reason) {
+    INFO("scene: " << text);
+    CHECK_THROWS_AS(parse_scene(text, test_file), InputError);
+    const std::string message = rejection(text);
+    INFO("message: " << message);
+    const std::string where = path.empty() ? test_file + ": " : test_file + ": " + path + ": ";
+    CHECK(message.rfind(where, 0) == 0);
+    CHECK(message.find(reason) != std::string::npos);
+}
+
+std::filesystem::path unique_temp_path(const std::string& stem) {
+    std::random_device random;
+    return std::filesystem::temp_directory_path() /
+           (stem + "-" + std::to_string(random()) + std::to_string(random()));
+}
+
+} // namespace
+
+// ---------------------------------------------------------------- accepted scenes
+
+TEST_CASE("a minimal scene gets every documented default", "[scene]") {
+    const Scene scene = parse_scene(R"({
+        "schema": "impulse/scene@1", "name": "minimal", "dt": 0.01, "duration": 1,
+        "bodies": [{"name": "ball", "shape": {"circle": 0.5}}]
+    })",
+                                    test_file);
+    CHECK(scene.file == test_file);
+    CHECK(scene.name == "minimal");
+    CHECK(scene.description.empty());
+    CHECK(scene.gravity.x == 0.0);
+    CHECK(scene.gravity.y == -9.81);
+    CHECK(scene.restitution == 1.0);
+    CHECK(scene.dt == 0.01);
+    CHECK(scene.duration == 1.0);
+    CHECK(scene.solver.integrator == Integrator::euler);
+    CHECK(scene.solver.toi == impulse::TimeOfImpactMethod::bisection);
+    CHECK(scene.solver.toi_tolerance == 1e-12);
+    CHECK(scene.solver.contact_tolerance == 1e-9);
+    CHECK(scene.solver.contacts == impulse::ContactMode::single);
+    CHECK_FALSE(scene.solver.ccd);
+    CHECK_FALSE(scene.solver.resting);
+    CHECK(scene.warnings.empty());
+    CHECK(scene.sha256.size() == 64);
+
+    REQUIRE(scene.bodies.size() == 1);
+    const impulse::harness::SceneBody& ball = scene.bodies[0];
+    CHECK(ball.name == "ball");
+    CHECK_FALSE(ball.is_static);
+    CHECK(ball.shape.type == ShapeType::circle);
+    CHECK(ball.shape.radius == 0.5);
+    CHECK(ball.position == Vec2{0.0, 0.0});
+    CHECK(ball.angle == 0.0);
+    CHECK(ball.velocity == Vec2{0.0, 0.0});
+    CHECK(ball.angular_velocity == 0.0);
+    CHECK(ball.rotation);
+    // Neither mass nor density: density 1 kg/m^2.
+    const double pi = 3.141592653589793;
+    CHECK(ball.mass == Approx(pi * 0.25).epsilon(1e-15));
+    CHECK(ball.inertia == Approx(ball.mass * 0.25 / 2.0).epsilon(1e-14));
+}
+
+TEST_CASE("the design's example scene loads with every value it states", "[scene]") {
+    const Scene scene = parse_scene(R"({
+  "schema": "impulse/scene@1",
+  "name": "drop-tilted",
+  "description": "2x1 box, 30 degrees, dropped onto static ground; e = 0.8",
+  "gravity": [0, -9.81],
+  "restitution": 0.8,
+  "dt": 0.016666666666666666,
+  "duration": 3.0,
+  "solver": { "integrator": "symplectic-euler", "toi": "bisection",
+              "toi_tolerance": 1e-12, "contact_tolerance": 1e-9 },
+  "bodies": [
+    { "name": "ground", "static": true, "shape": { "box": [50, 0.5] }, "position": [0, -0.5] },
+    { "name": "box", "shape": { "box": [1, 0.5] }, "mass": 1, "position": [0, 3],
+      "angle": 0.5235987755982988, "velocity": [0, 0], "angular_velocity": 0 }
+  ]
+})",
+                                    "harness/scenes/drop-tilted.json");
+    CHECK(scene.name == "drop-tilted");
+    CHECK(scene.description == "2x1 box, 30 degrees, dropped onto static ground; e = 0.8");
+    CHECK(scene.restitution == 0.8);
+    CHECK(scene.solver.integrator == Integrator::symplectic_euler);
+    CHECK(step_count(scene) == 180);
+    REQUIRE(scene.bodies.size() == 2);
+    const auto& ground = scene.bodies[0];
+    CHECK(ground.is_static);
+    CHECK(ground.mass == 0.0);
+    CHECK(ground.inertia == 0.0);
+    CHECK(ground.position == Vec2{0.0, -0.5});
+    const auto& box = scene.bodies[1];
+    CHECK(box.mass == 1.0);
+    CHECK(box.angle == 0.5235987755982988);
+    CHECK(box.shape.type == ShapeType::polygon);
+    CHECK(box.shape.polygon.count == 4);
+}
+
+TEST_CASE("every integrator name is accepted and round-trips", "[scene]") {
+    for (const Integrator integrator :
+         {Integrator::euler, Integrator::symplectic_euler, Integrator::verlet, Integrator::rk4}) {
+        const std::string name = impulse::harness::integrator_name(integrator);
+        const Scene scene =
+            parse_scene(scene_with(R"("solver": {"integrator": ")" + name + R"("},)"), test_file);
+        CHECK(scene.solver.integrator == integrator);
+        Integrator back = Integrator::euler;
+        CHECK(impulse::harness::integrator_from_name(name, back));
+        CHECK(back == integrator);
+    }
+    Integrator unchanged = Integrator::rk4;
+    CHECK_FALSE(impulse::harness::integrator_from_name("leapfrog", unchanged));
+    CHECK(unchanged == Integrator::rk4);
+    CHECK(std::string(impulse::harness::toi_method_name(impulse::TimeOfImpactMethod::bisection)) ==
+          "bisection");
+    CHECK(std::string(impulse::harness::contact_mode_name(impulse::ContactMode::single)) ==
+          "single");
+}
+
+TEST_CASE("settings that have one value in this version may be stated", "[scene]") {
+    const Scene scene = parse_scene(
+        scene_with(
+            R"("solver": {"toi": "bisection", "contacts": "single", "ccd": false, "resting": false,
+                          "toi_tolerance": 1e-10, "contact_tolerance": 1e-6},)"),
+        test_file);
+    CHECK(scene.solver.toi_tolerance == 1e-10);
+    CHECK(scene.solver.contact_tolerance == 1e-6);
+}
+
+TEST_CASE("mass comes from mass, or from density times area", "[scene]") {
+    SECTION("density") {
+        const Scene scene =
+            parse_scene(scene_with_body(R"("shape": {"box": [1, 0.5]}, "density": 2)"), test_file);
+        CHECK(scene.bodies[0].mass == Approx(4.0).epsilon(1e-15));
+    }
+    SECTION("mass") {
+        const Scene scene =
+            parse_scene(scene_with_body(R"("shape": {"box": [1, 0.5]}, "mass": 3)"), test_file);
+        CHECK(scene.bodies[0].mass == 3.0);
+    }
+    SECTION("neither: density 1") {
+        const Scene scene =
+            parse_scene(scene_with_body(R"("shape": {"box": [1, 0.5]})"), test_file);
+        CHECK(scene.bodies[0].mass == Approx(2.0).epsilon(1e-15));
+    }
+}
+
+TEST_CASE("inertia defaults from the shape, or is taken as given", "[scene]") {
+    SECTION("box 2a x 2b: I = M (4a^2 + 4b^2) / 12") {
+        const double a = 1.5;
+        const double b = 0.25;
+        const double mass = 3.0;
+        const Scene scene =
+            parse_scene(scene_with_body(R"("shape": {"box": [1.5, 0.25]}, "mass": 3)"), test_file);
+        const double expected = mass * (4 * a * a + 4 * b * b) / 12.0;
+        CHECK(std::abs(scene.bodies[0].inertia - expected) <= 1e-14 * expected);
+    }
+    SECTION("disc: I = M r^2 / 2") {
+        const Scene scene =
+            parse_scene(scene_with_body(R"("shape": {"circle": 2}, "mass": 3)"), test_file);
+        CHECK(std::abs(scene.bodies[0].inertia - 6.0) <= 1e-14 * 6.0);
+    }
+    SECTION("given") {
+        const Scene scene = parse_scene(
+            scene_with_body(R"("shape": {"circle": 2}, "mass": 3, "inertia": 7)"), test_file);
+        CHECK(scene.bodies[0].inertia == 7.0);
+    }
+    SECTION("rotation false: infinite inertia, stored as 0") {
+        const Scene scene = parse_scene(
+            scene_with_body(R"("shape": {"circle": 2}, "mass": 3, "rotation": false)"), test_file);
+        CHECK_FALSE(scene.bodies[0].rotation);
+        CHECK(scene.bodies[0].inertia == 0.0);
+    }
+}
+
+TEST_CASE("a polygon off its centroid is recentred without moving in the world", "[scene]") {
+    const Vec2 given[3] = {{0, 0}, {3, 0}, {0, 3}};
+    const Vec2 position{2, 5};
+    const double angle = 0.7;
+    const Scene scene =
+        parse_scene(scene_with_body(R"("shape": {"polygon": [[0, 0], [3, 0], [0, 3]]},
+                                                     "position": [2, 5], "angle": 0.7)"),
+                    test_file);
+    const auto& body = scene.bodies[0];
+    REQUIRE(body.shape.polygon.count == 3);
+    const impulse::Rotation q = impulse::rotation_of(angle);
+    for (int i = 0; i < 3; ++i) {
+        const Vec2 before = impulse::rotate(q, given[i]) + position;
+        const Vec2 after = impulse::rotate(q, body.shape.polygon.vertices[i]) + body.position;
+        CHECK(std::abs(after.x - before.x) <= 1e-12);
+        CHECK(std::abs(after.y - before.y) <= 1e-12);
+    }
+    const Vec2 centroid = impulse::mass_properties(body.shape).centroid;
+    CHECK(std::abs(centroid.x) <= 1e-15);
+    CHECK(std::abs(centroid.y) <= 1e-15);
+    REQUIRE(scene.warnings.size() == 1);
+    CHECK(scene.warnings[0].rfind(test_file + ": bodies[0].shape.polygon: centroid is at (", 0) ==
+          0);
+    CHECK(scene.warnings[0].find("not at the origin; vertices recentred and position moved") !=
+          std::string::npos);
+}
+
+TEST_CASE("a polygon already centred is left alone", "[scene]") {
+    const Scene scene =
+        parse_scene(scene_with_body(R"("shape": {"polygon": [[-1, -1], [1, -1], [1, 1], [-1, 1]]},
+                            "position": [2, 5])"),
+                    test_file);
+    CHECK(scene.warnings.empty());
+    CHECK(scene.bodies[0].position == Vec2{2, 5});
+    CHECK(scene.bodies[0].shape.polygon.vertices[0] == Vec2{-1, -1});
+}
+
+TEST_CASE("bodies may touch at t = 0, and static bodies may overlap", "[scene]") {
+    SECTION("a box resting exactly on the ground") {
+        CHECK(rejection(scene_with_bodies(R"([
+            {"name": "ground", "static": true, "shape": {"box": [5, 0.5]}, "position": [0, -0.5]},
+            {"name": "box", "shape": {"box": [1, 0.5]}, "position": [0, 0.5]}])"))
+                  .empty());
+    }
+    SECTION("two discs touching") {
+        CHECK(rejection(scene_with_bodies(R"([
+            {"name": "a", "shape": {"circle": 1}, "position": [0, 0]},
+            {"name": "b", "shape": {"circle": 1}, "position": [2, 0]}])"))
+                  .empty());
+    }
+    SECTION("walls meeting in a corner") {
+        CHECK(rejection(scene_with_bodies(R"([
+            {"name": "floor", "static": true, "shape": {"box": [5, 0.5]}},
+            {"name": "wall", "static": true, "shape": {"box": [0.5, 5]}},
+            {"name": "ball", "shape": {"circle": 1}, "position": [3, 3]}])"))
+                  .empty());
+    }
+}
+
+TEST_CASE("the fingerprint is of the content, not the layout", "[scene]") {
+    const std::string compact =
+        R"({"schema":"impulse/scene@1","name":"t","dt":0.01,"duration":1,"bodies":[{"name":"ball","shape":{"circle":0.5}}]})";
+    const std::string spread = R"({
+        "bodies": [ { "shape": { "circle": 0.5 }, "name": "ball" } ],
+        "duration": 1,
+        "dt": 0.01,
+        "name": "t",
+        "schema": "impulse/scene@1"
+    })";
+    const std::string changed =
+        R"({"schema":"impulse/scene@1","name":"t","dt":0.01,"duration":2,"bodies":[{"name":"ball","shape":{"circle":0.5}}]})";
+    const Scene a = parse_scene(compact, test_file);
+    const Scene b = parse_scene(spread, "other.json");
+    const Scene c = parse_scene(changed, test_file);
+    CHECK(a.sha256 == b.sha256);
+    CHECK(a.sha256 != c.sha256);
+    // `1` and `1.0` are the same number, so the same scene.
+    std::string as_float = compact;
+    as_float.replace(as_float.find("\"duration\":1"), 12, "\"duration\":1.0");
+    CHECK(parse_scene(as_float, test_file).sha256 == a.sha256);
+    // Canonical: keys sorted, no whitespace, every number written as a double.
+    CHECK(
+        a.sha256 ==
+        impulse::harness::sha256_hex(
+            R"({"bodies":[{"name":"ball","shape":{"circle":0.5}}],"dt":0.01,"duration":1.0,"name":"t","schema":"impulse/scene@1"})"));
+}
+
+TEST_CASE("step_count rounds a near-integer ratio and otherwise rounds up", "[scene]") {
+    Scene scene;
+    scene.duration = 3.0;
+    scene.dt = 1.0 / 60.0;
+    CHECK(step_count(scene) == 180);
+    scene.duration = 1.0;
+    scene.dt = 0.3;
+    CHECK(step_count(scene) == 4);
+    scene.duration = 1.0;
+    scene.dt = 0.1;
+    CHECK(step_count(scene) == 10);
+}
+
+// ---------------------------------------------------------------- the file
+
+TEST_CASE("load_scene reads a file and names it", "[scene]") {
+    const std::filesystem::path path = unique_temp_path("impulse-scene");
+    {
+        std::ofstream out(path, std::ios::binary);
+        out << scene_with("");
+    }
+    const Scene scene = load_scene(path.string());
+    CHECK(scene.file == path.string());
+    CHECK(scene.name == "t");
+    std::filesystem::remove(path);
+}
+
+TEST_CASE("load_scene refuses what it cannot read", "[scene]") {
+    SECTION("a missing file") {
+        const std::string path = unique_temp_path("impulse-missing").string();
+        CHECK_THROWS_AS(load_scene(path), InputError);
+        CHECK_THROWS_WITH(load_scene(path), Catch::StartsWith(path + ": cannot be read ("));
+    }
+    SECTION("a directory") {
+        const std::string path = std::filesystem::temp_directory_path().string();
+        CHECK_THROWS_AS(load_scene(path), InputError);
+        CHECK_THROWS_WITH(load_scene(path), Catch::StartsWith(path + ": cannot be read ("));
+    }
+    SECTION("a file over 16 MiB") {
+        const std::filesystem::path path = unique_temp_path("impulse-large");
+        {
+            std::ofstream out(path, std::ios::binary);
+            const std::string block(1024 * 1024, ' ');
+            for (int i = 0; i < 16; ++i) {
+                out << block;
+            }
+            out << "{}";
+        }
+        CHECK_THROWS_WITH(load_scene(path.string()),
+                          Catch::StartsWith(path.string() + ": is too large"));
+        std::filesystem::remove(path);
+    }
+}
+
+// ---------------------------------------------------------------- rejected: the text
+
+TEST_CASE("text that is not a JSON scene document is refused", "[scene]") {
+    SECTION("merge-conflict marker") {
+        require_rejected("{\n<<<<<<< HEAD\n  \"name\": \"a\",\n=======\n  \"name\": "
+                         "\"b\",\n>>>>>>> branch\n}",
+                         "", "has a merge-conflict marker at line 2");
+    }
+    SECTION("nested deeper than 64 levels") {
+        require_rejected(std::string(65, '[') + std::string(65, ']'), "", "nested too deeply");
+    }
+    SECTION("64 levels is not too deep") {
+        require_rejected(std::string(64, '[') + std::string(64, ']'), "", "must be a JSON object");
+    }
+    SECTION("brackets inside strings do not count as nesting") {
+        CHECK(
+            rejection(scene_with(R"("description": ")" + std::string(100, '[') + R"(",)")).empty());
+    }
+    SECTION("not JSON") {
+        require_rejected(R"({"schema": "impulse/scene@1", "name": tru})", "",
+                         "not valid JSON: line 1, column");
+    }
+    SECTION("empty") {
+        require_rejected("", "", "not valid JSON");
+    }
+    SECTION("a number too large for a double") {
+        require_rejected(scene_with(R"("restitution": 1e400,)"), "", "not valid JSON");
+    }
+    SECTION("duplicate top-level key") {
+        require_rejected(scene_with(R"("dt": 0.02,)"), "dt", "more than once");
+    }
+    SECTION("duplicate key deep inside") {
+        require_rejected(scene_with_bodies(R"([{"name": "a", "shape": {"circle": 1}},
+            {"name": "b", "shape": {"box": [1, 1]}, "position": [5, 0], "mass": 1, "mass": 2}])"),
+                         "bodies[1].mass", "more than once");
+    }
+    SECTION("duplicate key in a polygon's object-valued sibling") {
+        require_rejected(scene_with_body(R"("shape": {"polygon": [[-1, -1], [1, -1], [0, 1]],
+                                                      "polygon": [[-1, -1], [1, -1], [0, 1]]})"),
+                         "bodies[0].shape.polygon", "more than once");
+    }
+    SECTION("top level not an object") {
+        require_rejected("[1, 2]", "", "must be a JSON object, got an array");
+    }
+}
+
+// ---------------------------------------------------------------- rejected: scene keys
+
+TEST_CASE("unknown top-level keys are refused", "[scene]") {
+    SECTION("a typo") {
+        require_rejected(scene_with(R"("gravty": [0, -1],)"), "gravty",
+                         "unknown key (did you mean gravity?)");
+    }
+    SECTION("a key that is not an identifier is quoted in the path") {
+        require_rejected(scene_with(R"("we ird": 1,)"), R"(["we ird"])", "unknown key");
+    }
+}
+
+TEST_CASE("schema", "[scene]") {
+    SECTION("missing") {
+        require_rejected(R"({"name": "t"})", "schema", "is required");
+    }
+    SECTION("a later version") {
+        require_rejected(R"({"schema": "impulse/scene@2", "name": "t"})", "schema",
+                         "unsupported scene version");
+    }
+    SECTION("another kind of file") {
+        require_rejected(R"({"schema": "impulse/trajectory@1", "frames": []})", "schema",
+                         "not a scene");
+    }
+    SECTION("not a string") {
+        require_rejected(R"({"schema": 1})", "schema", "not a scene");
+    }
+}
+
+TEST_CASE("scene name", "[scene]") {
+    const std::string rest = R"(, "dt": 0.01, "duration": 1,
+        "bodies": [{"name": "ball", "shape": {"circle": 0.5}}]})";
+    SECTION("missing") {
+        require_rejected(R"({"schema": "impulse/scene@1")" + rest, "name", "is required");
+    }
+    SECTION("not a string") {
+        require_rejected(R"({"schema": "impulse/scene@1", "name": 7)" + rest, "name",
+                         "must be a string");
+    }
+    SECTION("a path") {
+        require_rejected(R"({"schema": "impulse/scene@1", "name": "../escape")" + rest, "name",
+                         "letters, digits");
+    }
+    SECTION("a leading dot") {
+        require_rejected(R"({"schema": "impulse/scene@1", "name": ".hidden")" + rest, "name",
+                         "starting with a letter or digit");
+    }
+    SECTION("empty") {
+        require_rejected(R"({"schema": "impulse/scene@1", "name": "")" + rest, "name",
+                         "letters, digits");
+    }
+    SECTION("65 characters") {
+        require_rejected(R"({"schema": "impulse/scene@1", "name": ")" + std::string(65, 'a') +
+                             "\"" + rest,
+                         "name", "1 to 64");
+    }
+    SECTION("64 characters is allowed") {
+        CHECK(rejection(R"({"schema": "impulse/scene@1", "name": ")" + std::string(64, 'a') + "\"" +
+                        rest)
+                  .empty());
+    }
+}
+
+TEST_CASE("description, gravity and restitution", "[scene]") {
+    SECTION("description not a string") {
+        require_rejected(scene_with(R"("description": ["x"],)"), "description", "must be a string");
+    }
+    SECTION("gravity not a pair") {
+        require_rejected(scene_with(R"("gravity": [1],)"), "gravity", "two numbers [x, y]");
+    }
+    SECTION("gravity component not a number") {
+        require_rejected(scene_with(R"("gravity": [0, "down"],)"), "gravity[1]",
+                         "must be a number, got \"down\"");
+    }
+    SECTION("restitution above 1") {
+        require_rejected(scene_with(R"("restitution": 1.5,)"), "restitution",
+                         "must be between 0 and 1, got 1.5");
+    }
+    SECTION("restitution below 0") {
+        require_rejected(scene_with(R"("restitution": -0.1,)"), "restitution",
+                         "must be between 0 and 1, got -0.1");
+    }
+    SECTION("restitution not a number") {
+        require_rejected(scene_with(R"("restitution": null,)"), "restitution",
+                         "must be a number, got null");
+    }
+}
+
+TEST_CASE("dt and duration", "[scene]") {
+    const std::string head = R"({"schema": "impulse/scene@1", "name": "t", )";
+    const std::string bodies = R"("bodies": [{"name": "ball", "shape": {"circle": 0.5}}]})";
+    SECTION("dt missing") {
+        require_rejected(head + R"("duration": 1, )" + bodies, "dt", "is required");
+    }
+    SECTION("dt zero") {
+        require_rejected(head + R"("dt": 0, "duration": 1, )" + bodies, "dt", "must be > 0, got 0");
+    }
+    SECTION("dt negative") {
+        require_rejected(head + R"("dt": -0.5, "duration": 1, )" + bodies, "dt",
+                         "must be > 0, got -0.5");
+    }
+    SECTION("dt a string") {
+        require_rejected(head + R"("dt": "0.01", "duration": 1, )" + bodies, "dt",
+                         "must be a number");
+    }
+    SECTION("duration missing") {
+        require_rejected(head + R"("dt": 0.01, )" + bodies, "duration", "is required");
+    }
+    SECTION("duration zero") {
+        require_rejected(head + R"("dt": 0.01, "duration": 0, )" + bodies, "duration",
+                         "must be > 0");
+    }
+    SECTION("duration shorter than dt") {
+        require_rejected(head + R"("dt": 0.1, "duration": 0.05, )" + bodies, "duration",
+                         "must be >= dt (0.1), got 0.05");
+    }
+    SECTION("too many steps") {
+        require_rejected(head + R"("dt": 1e-8, "duration": 1, )" + bodies, "duration",
+                         "duration / dt gives 100000000 steps; at most 10000000 are allowed");
+    }
+    SECTION("an absurd number of steps is still reported") {
+        require_rejected(head + R"("dt": 1e-300, "duration": 1e300, )" + bodies, "duration",
+                         "at most 10000000 are allowed");
+    }
+}
+
+TEST_CASE("solver", "[scene]") {
+    SECTION("not an object") {
+        require_rejected(scene_with(R"("solver": "rk4",)"), "solver", "must be an object");
+    }
+    SECTION("unknown key") {
+        require_rejected(scene_with(R"("solver": {"integrater": "rk4"},)"), "solver.integrater",
+                         "unknown key (did you mean integrator?)");
+    }
+    SECTION("unknown integrator") {
+        require_rejected(scene_with(R"("solver": {"integrator": "leapfrog"},)"),
+                         "solver.integrator", "must be one of \"euler\"");
+    }
+    SECTION("integrator not a string") {
+        require_rejected(scene_with(R"("solver": {"integrator": 4},)"), "solver.integrator",
+                         "got 4");
+    }
+    SECTION("another time-of-impact method") {
+        require_rejected(scene_with(R"("solver": {"toi": "newton"},)"), "solver.toi",
+                         "must be \"bisection\"");
+    }
+    SECTION("toi_tolerance zero") {
+        require_rejected(scene_with(R"("solver": {"toi_tolerance": 0},)"), "solver.toi_tolerance",
+                         "must be > 0");
+    }
+    SECTION("contact_tolerance negative") {
+        require_rejected(scene_with(R"("solver": {"contact_tolerance": -1e-9},)"),
+                         "solver.contact_tolerance", "must be > 0, got -1e-09");
+    }
+    SECTION("simultaneous contacts") {
+        require_rejected(scene_with(R"("solver": {"contacts": "simultaneous"},)"),
+                         "solver.contacts",
+                         "must be \"single\": this version models one contact point at a time");
+    }
+    SECTION("ccd on") {
+        require_rejected(scene_with(R"("solver": {"ccd": true},)"), "solver.ccd",
+                         "must be false: this version");
+    }
+    SECTION("ccd not a bool") {
+        require_rejected(scene_with(R"("solver": {"ccd": "no"},)"), "solver.ccd", "must be false");
+    }
+    SECTION("resting on") {
+        require_rejected(scene_with(R"("solver": {"resting": true},)"), "solver.resting",
+                         "must be false: this version");
+    }
+}
+
+// ---------------------------------------------------------------- rejected: bodies
+
+TEST_CASE("the bodies list", "[scene]") {
+    SECTION("missing") {
+        require_rejected(R"({"schema": "impulse/scene@1", "name": "t", "dt": 0.01, "duration": 1})",
+                         "bodies", "is required");
+    }
+    SECTION("not an array") {
+        require_rejected(scene_with_bodies(R"({"ball": {}})"), "bodies", "must be an array");
+    }
+    SECTION("empty") {
+        require_rejected(scene_with_bodies("[]"), "bodies", "at least one body");
+    }
+    SECTION("a body that is not an object") {
+        require_rejected(scene_with_bodies("[1]"), "bodies[0]", "must be an object");
+    }
+    SECTION("every body static") {
+        require_rejected(
+            scene_with_bodies(R"([{"name": "floor", "static": true, "shape": {"box": [5, 1]}}])"),
+            "bodies", "static");
+    }
+}
+
+TEST_CASE("body keys and names", "[scene]") {
+    SECTION("unknown key") {
+        require_rejected(scene_with_body(R"("shape": {"circle": 1}, "mas": 1)"), "bodies[0].mas",
+                         "unknown key (did you mean mass?)");
+    }
+    SECTION("name missing") {
+        require_rejected(scene_with_bodies(R"([{"shape": {"circle": 1}}])"), "bodies[0].name",
+                         "is required");
+    }
+    SECTION("name with a slash") {
+        require_rejected(scene_with_bodies(R"([{"name": "a/b", "shape": {"circle": 1}}])"),
+                         "bodies[0].name", "letters, digits");
+    }
+    SECTION("name starting with '-'") {
+        require_rejected(scene_with_bodies(R"([{"name": "-a", "shape": {"circle": 1}}])"),
+                         "bodies[0].name", "starting with a letter or digit");
+    }
+    SECTION("duplicate name") {
+        require_rejected(scene_with_bodies(R"([{"name": "a", "shape": {"circle": 1}},
+                                              {"name": "b", "shape": {"circle": 1}, "position": [5, 0]},
+                                              {"name": "a", "shape": {"circle": 1}, "position": [9, 0]}])"),
+                         "bodies[2].name", "already the name of bodies[0]");
+    }
+    SECTION("static not a bool") {
+        require_rejected(scene_with_body(R"("static": 1, "shape": {"circle": 1})"),
+                         "bodies[0].static", "must be true or false");
+    }
+}
+
+TEST_CASE("body shape", "[scene]") {
+    SECTION("missing") {
+        require_rejected(scene_with_body(R"("mass": 1)"), "bodies[0].shape", "is required");
+    }
+    SECTION("not an object") {
+        require_rejected(scene_with_body(R"("shape": "circle")"), "bodies[0].shape",
+                         "must be an object");
+    }
+    SECTION("no kind") {
+        require_rejected(scene_with_body(R"("shape": {})"), "bodies[0].shape",
+                         "one of box, circle or polygon");
+    }
+    SECTION("two kinds") {
+        require_rejected(scene_with_body(R"("shape": {"box": [1, 1], "circle": 1})"),
+                         "bodies[0].shape.circle", "exactly one of box, circle or polygon");
+    }
+    SECTION("unknown kind") {
+        require_rejected(scene_with_body(R"("shape": {"sphere": 1})"), "bodies[0].shape.sphere",
+                         "unknown key");
+    }
+    SECTION("box not a pair") {
+        require_rejected(scene_with_body(R"("shape": {"box": [1]})"), "bodies[0].shape.box",
+                         "half extents [hx, hy]");
+    }
+    SECTION("box with a zero half extent") {
+        require_rejected(scene_with_body(R"("shape": {"box": [1, 0]})"), "bodies[0].shape.box[1]",
+                         "must be > 0, got 0");
+    }
+    SECTION("box with a string") {
+        require_rejected(scene_with_body(R"("shape": {"box": ["1", 1]})"), "bodies[0].shape.box[0]",
+                         "must be a number");
+    }
+    SECTION("circle radius negative") {
+        require_rejected(scene_with_body(R"("shape": {"circle": -1})"), "bodies[0].shape.circle",
+                         "must be > 0, got -1");
+    }
+    SECTION("circle radius not a number") {
+        require_rejected(scene_with_body(R"("shape": {"circle": [1]})"), "bodies[0].shape.circle",
+                         "must be a number, got an array");
+    }
+}
+
+TEST_CASE("polygon vertices", "[scene]") {
+    const std::string path = "bodies[0].shape.polygon";
+    auto polygon = [](const std::string& vertices) {
+        return scene_with_body(R"("shape": {"polygon": )" + vertices + "}");
+    };
+    SECTION("not an array") {
+        require_rejected(polygon("3"), path, "must be an array");
+    }
+    SECTION("two vertices") {
+        require_rejected(polygon("[[0, 0], [1, 0]]"), path, "must have 3 to 16 vertices, got 2");
+    }
+    SECTION("seventeen vertices") {
+        std::string vertices = "[";
+        for (int i = 0; i < 17; ++i) {
+            const double a = 2 * 3.141592653589793 * i / 17;
+            vertices += (i ? ", [" : "[") + std::to_string(std::cos(a)) + ", " +
+                        std::to_string(std::sin(a)) + "]";
+        }
+        require_rejected(polygon(vertices + "]"), path, "got 17");
+    }
+    SECTION("a vertex that is not a pair") {
+        require_rejected(polygon("[[0, 0], [1], [0, 1]]"), path + "[1]", "two numbers [x, y]");
+    }
+    SECTION("a coordinate that is not a number") {
+        require_rejected(polygon(R"([[0, 0], [1, 0], [true, 1]])"), path + "[2][0]",
+                         "must be a number, got true");
+    }
+    SECTION("repeated consecutive vertex") {
+        require_rejected(polygon("[[0, 0], [0, 0], [1, 0], [0, 1]]"), path + "[1]",
+                         "repeats vertex 0");
+    }
+    SECTION("last vertex repeating the first") {
+        require_rejected(polygon("[[0, 0], [1, 0], [0, 1], [0, 0]]"), path + "[0]",
+                         "repeats vertex 3");
+    }
+    SECTION("clockwise") {
+        require_rejected(polygon("[[0, 0], [0, 1], [1, 0]]"), path, "counter-clockwise");
+    }
+    SECTION("collinear vertex") {
+        require_rejected(polygon("[[0, 0], [1, 0], [2, 0], [2, 2], [0, 2]]"), path + "[1]",
+                         "collinear");
+    }
+    SECTION("reflex vertex") {
+        require_rejected(polygon("[[0, 0], [2, 0], [2, 2], [1, 1], [0, 2]]"), path + "[3]",
+                         "reflex");
+    }
+    SECTION("a star that winds round twice") {
+        require_rejected(polygon("[[0, 1], [-0.5878, -0.809], [0.9511, 0.309], [-0.9511, 0.309], "
+                                 "[0.5878, -0.809]]"),
+                         path, "winds around more than once");
+    }
+}
+
+TEST_CASE("static bodies take no mass or motion", "[scene]") {
+    for (const std::string key :
+         {"mass", "density", "inertia", "velocity", "angular_velocity", "rotation"}) {
+        const std::string value = key == "velocity" ? "[0, 0]" : key == "rotation" ? "true" : "1";
+        require_rejected(
+            scene_with_bodies(R"([{"name": "ball", "shape": {"circle": 1}, "position": [0, 5]},
+                                              {"name": "floor", "static": true, "shape": {"box": [5, 1]}, ")" +
+                              key + "\": " + value + "}]"),
+            "bodies[1]." + key, "a static body has infinite mass and does not move; remove " + key);
+    }
+}
+
+TEST_CASE("dynamic body mass, inertia and motion", "[scene]") {
+    SECTION("the design's example: negative mass") {
+        const std::string message = rejection(scene_with_bodies(R"([
+            {"name": "ground", "static": true, "shape": {"box": [50, 0.5]}, "position": [0, -0.5]},
+            {"name": "box", "shape": {"box": [1, 0.5]}, "mass": -1, "position": [0, 3]}])"),
+                                              "harness/scenes/drop.json");
+        CHECK(message == "harness/scenes/drop.json: bodies[1].mass: must be > 0, got -1");
+    }
+    SECTION("mass and density together") {
+        require_rejected(scene_with_body(R"("shape": {"circle": 1}, "mass": 1, "density": 1)"),
+                         "bodies[0].density", "mass or density, not both");
+    }
+    SECTION("density zero") {
+        require_rejected(scene_with_body(R"("shape": {"circle": 1}, "density": 0)"),
+                         "bodies[0].density", "must be > 0, got 0");
+    }
+    SECTION("inertia negative") {
+        require_rejected(scene_with_body(R"("shape": {"circle": 1}, "inertia": -2)"),
+                         "bodies[0].inertia", "must be > 0, got -2");
+    }
+    SECTION("inertia on a non-rotating body") {
+        require_rejected(
+            scene_with_body(R"("shape": {"circle": 1}, "rotation": false, "inertia": 2)"),
+            "bodies[0].inertia", "infinite inertia");
+    }
+    SECTION("spin on a non-rotating body") {
+        require_rejected(
+            scene_with_body(R"("shape": {"circle": 1}, "rotation": false, "angular_velocity": 1)"),
+            "bodies[0].angular_velocity", "must be 0");
+    }
+    SECTION("rotation not a bool") {
+        require_rejected(scene_with_body(R"("shape": {"circle": 1}, "rotation": "no")"),
+                         "bodies[0].rotation", "must be true or false");
+    }
+    SECTION("position not a pair") {
+        require_rejected(scene_with_body(R"("shape": {"circle": 1}, "position": [0, 1, 2])"),
+                         "bodies[0].position", "two numbers");
+    }
+    SECTION("angle not a number") {
+        require_rejected(scene_with_body(R"("shape": {"circle": 1}, "angle": "30deg")"),
+                         "bodies[0].angle", "must be a number");
+    }
+    SECTION("velocity component null") {
+        require_rejected(scene_with_body(R"("shape": {"circle": 1}, "velocity": [1, null])"),
+                         "bodies[0].velocity[1]", "must be a number, got null");
+    }
+    SECTION("angular velocity not a number") {
+        require_rejected(scene_with_body(R"("shape": {"circle": 1}, "angular_velocity": {})"),
+                         "bodies[0].angular_velocity", "must be a number, got an object");
+    }
+    SECTION("a mass too large for a double") {
+        require_rejected(scene_with_body(R"("shape": {"box": [1e200, 1e200]}, "density": 1e300)"),
+                         "bodies[0]", "must be finite and > 0");
+    }
+}
+
+TEST_CASE("bodies overlapping at t = 0", "[scene]") {
+    SECTION("two discs") {
+        require_rejected(scene_with_bodies(R"([
+            {"name": "a", "shape": {"circle": 1}, "position": [0, 0]},
+            {"name": "b", "shape": {"circle": 1}, "position": [1.5, 0]}])"),
+                         "bodies[1]", "'b' overlaps bodies[0] 'a' at t = 0 by 0.5 m");
+    }
+    SECTION("a box sunk into static ground, named at the later body") {
+        require_rejected(scene_with_bodies(R"([
+            {"name": "ball", "shape": {"circle": 1}, "position": [0, 10]},
+            {"name": "box", "shape": {"box": [1, 0.5]}, "position": [0, 0.25]},
+            {"name": "ground", "static": true, "shape": {"box": [5, 0.5]}, "position": [0, -0.5]}])"),
+                         "bodies[2]", "'ground' overlaps bodies[1] 'box' at t = 0 by 0.25 m");
+    }
+}
+
+// Whatever a value is replaced with, the loader either accepts the scene or
+// throws InputError: never a nlohmann exception or anything else.
+TEST_CASE("only InputError escapes, whatever type a value has", "[scene]") {
+    const std::string base = R"({
+        "schema": "impulse/scene@1", "name": "t", "description": "d", "gravity": [0, -1],
+        "restitution": 0.5, "dt": 0.01, "duration": 1,
+        "solver": {"integrator": "rk4", "toi": "bisection", "toi_tolerance": 1e-12,
+                   "contact_tolerance": 1e-9, "contacts": "single", "ccd": false, "resting": false},
+        "bodies": [
+            {"name": "floor", "static": true, "shape": {"box": [5, 0.5]}, "position": [0, -0.5]},
+            {"name": "poly", "shape": {"polygon": [[-1, -1], [1, -1], [0, 1]]}, "position": [0, 3],
+             "angle": 0.1, "velocity": [1, 0], "angular_velocity": 1, "density": 2, "inertia": 1,
+             "rotation": true}]
+    })";
+    REQUIRE(rejection(base).empty());
+    const nlohmann::json document = nlohmann::json::parse(base);
+    const std::vector<nlohmann::json> replacements = {nullptr,
+                                                      true,
+                                                      false,
+                                                      0,
+                                                      -1,
+                                                      1e308,
+                                                      "text",
+                                                      nlohmann::json::array(),
+                                                      nlohmann::json::array({1, 2}),
+                                                      nlohmann::json::object()};
+    const nlohmann::json flat = document.flatten();
+    std::vector<std::string> pointers;
+    for (const auto& [pointer, value] : flat.items()) {
+        // Every leaf and every container above it.
+        for (std::string p = pointer; !p.empty(); p = p.substr(0, p.rfind('/'))) {
+            pointers.push_back(p);
+        }
+    }
+    for (const std::string& pointer : pointers) {
+        for (const nlohmann::json& replacement : replacements) {
+            nlohmann::json changed = document;
+            changed[nlohmann::json::json_pointer(pointer)] = replacement;
+            INFO(pointer << " = " << replacement.dump());
+            CHECK_NOTHROW(rejection(changed.dump()));
+        }
+    }
+}

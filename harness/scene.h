@@ -1,0 +1,64 @@
+// A scene in the impulse/scene@1 format (DESIGN.md), loaded and validated.
+// Every default is filled in here, so nothing downstream guesses.
+#pragma once
+
+#include "shape.h"
+#include "solver_settings.h"
+#include "vec2.h"
+
+#include <string>
+#include <vector>
+
+namespace impulse::harness {
+
+inline constexpr const char* scene_schema = "impulse/scene@1";
+
+struct SceneBody {
+    std::string name;
+    bool is_static = false;
+    Shape shape;   // centred on the centre of mass (polygons recentred on load)
+    Vec2 position; // of the centre of mass
+    double angle = 0.0;
+    Vec2 velocity;
+    double angular_velocity = 0.0;
+    double mass = 0.0;    // kg; 0 for static bodies
+    double inertia = 0.0; // kg m^2 about the centre of mass; 0 for static and non-rotating
+    bool rotation = true; // false: infinite inertia
+};
+
+struct Scene {
+    std::string file; // as given on the command line, for messages
+    std::string name;
+    std::string description;
+    Vec2 gravity{0.0, -9.81};
+    double restitution = 1.0;
+    double dt = 0.0;
+    double duration = 0.0;
+    SolverSettings solver;
+    std::vector<SceneBody> bodies;
+    std::string sha256;                // of the canonical JSON of the file's content
+    std::vector<std::string> warnings; // e.g. a polygon recentred on its centroid
+};
+
+// Reads, parses and validates a scene file; throws InputError naming the file
+// and the JSON path of the first problem.
+Scene load_scene(const std::string& path);
+// The same from text already in memory; `file` is used in messages only.
+Scene parse_scene(const std::string& text, const std::string& file);
+
+// A longer run is refused: it would take hours and write gigabytes.
+inline constexpr long long max_steps = 10'000'000;
+
+// The number of steps a run takes: duration / dt, rounded to the nearest
+// integer when within 1e-9 of it (so 3 s at 1/60 s is 180 steps despite
+// rounding), rounded up otherwise.
+long long step_count(const Scene& scene);
+
+// Names of the solver enums as they appear in scene files and trajectories.
+const char* integrator_name(Integrator integrator);
+const char* toi_method_name(TimeOfImpactMethod method);
+const char* contact_mode_name(ContactMode mode);
+// false when the name is unknown
+bool integrator_from_name(const std::string& name, Integrator& out);
+
+} // namespace impulse::harness
