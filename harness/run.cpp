@@ -1,1 +1,52 @@
-// placeholder: written in this change
+#include "run.h"
+
+#include "input_error.h"
+#include "number_format.h"
+#include "simulator.h"
+
+namespace impulse::harness {
+
+Scene with_overrides(Scene scene, const Overrides& overrides) {
+    if (overrides.dt) {
+        // The scene's own dt was validated on load; an override must meet the same rules.
+        const std::string given = "--dt " + format_double(*overrides.dt);
+        if (*overrides.dt > scene.duration) {
+            throw InputError(scene.file, "duration",
+                             given + " is longer than the scene's duration of " +
+                                 format_double(scene.duration) + " s");
+        }
+        if (scene.duration / *overrides.dt > static_cast<double>(max_steps)) {
+            throw InputError(scene.file, "duration",
+                             given + " would take more than " + std::to_string(max_steps) +
+                                 " steps");
+        }
+        scene.dt = *overrides.dt;
+    }
+    if (overrides.integrator) {
+        scene.solver.integrator = *overrides.integrator;
+    }
+    if (overrides.toi_tolerance) {
+        scene.solver.toi_tolerance = *overrides.toi_tolerance;
+    }
+    return scene;
+}
+
+Trajectory run_scene(const Scene& scene, const Overrides& overrides) {
+    const Scene effective = with_overrides(scene, overrides);
+    std::unique_ptr<Simulator> simulator = make_impulse_simulator(effective);
+    Trajectory trajectory = record(*simulator, effective);
+    std::string used;
+    for (const auto& [key, given] : {std::pair{"dt", overrides.dt.has_value()},
+                                     {"integrator", overrides.integrator.has_value()},
+                                     {"toi_tolerance", overrides.toi_tolerance.has_value()}}) {
+        if (given) {
+            used += std::string(used.empty() ? "" : ", ") + "\"" + key + "\"";
+        }
+    }
+    if (!used.empty()) {
+        trajectory.solver.emplace_back("overrides", "[" + used + "]");
+    }
+    return trajectory;
+}
+
+} // namespace impulse::harness

@@ -1,0 +1,123 @@
+#include "cli.h"
+
+#include "input_error.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <iostream>
+
+namespace impulse::harness::cli {
+
+namespace {
+
+constexpr const char* usage =
+    R"(impulse: a deterministic regression harness for 2D rigid-body collision response
+
+usage: impulse <verb> [options]
+
+verbs:
+  run SCENE [--out FILE] [--dt S] [--integrator NAME] [--toi-tolerance S]
+        simulate a scene and write its trajectory (stdout without --out)
+
+options:
+  --help       this text; 'impulse <verb> --help' describes one verb
+  --version    the tool's version
+
+exit codes: 0 all held, 1 a comparison or expectation failed, 2 bad input or set-up
+)";
+
+} // namespace
+
+bool Arguments::has_flag(const std::string& name) const {
+    return std::find(flags.begin(), flags.end(), name) != flags.end();
+}
+
+std::optional<std::string> Arguments::option(const std::string& name) const {
+    const auto it = options.find(name);
+    if (it == options.end()) {
+        return std::nullopt;
+    }
+    return it->second;
+}
+
+Arguments parse_arguments(const std::vector<std::string>& args,
+                          const std::vector<std::string>& options_with_value,
+                          const std::vector<std::string>& known_flags) {
+    auto known = [](const std::vector<std::string>& list, const std::string& name) {
+        return std::find(list.begin(), list.end(), name) != list.end();
+    };
+    Arguments parsed;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& arg = args[i];
+        if (arg.size() < 2 || arg.compare(0, 2, "--") != 0) {
+            parsed.positional.push_back(arg);
+            continue;
+        }
+        const std::size_t eq = arg.find('=');
+        const std::string name = arg.substr(0, eq);
+        if (known(options_with_value, name)) {
+            if (eq != std::string::npos) {
+                parsed.options[name] = arg.substr(eq + 1);
+            } else if (i + 1 < args.size()) {
+                parsed.options[name] = args[++i];
+            } else {
+                throw UsageError(name + " needs a value");
+            }
+        } else if (known(known_flags, name) && eq == std::string::npos) {
+            parsed.flags.push_back(name);
+        } else {
+            throw UsageError("unknown option '" + arg + "'");
+        }
+    }
+    return parsed;
+}
+
+double positive_seconds(const std::string& option, const std::string& text) {
+    double value = 0.0;
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (ec != std::errc() || ptr != end || !std::isfinite(value) || value <= 0.0) {
+        throw UsageError(option + " must be a finite number of seconds > 0, got '" + text + "'");
+    }
+    return value;
+}
+
+int main(int argc, char** argv) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    std::ostream& out = std::cout;
+    std::ostream& err = std::cerr;
+    if (args.empty()) {
+        err << usage;
+        return exit_bad_input;
+    }
+    const std::string verb = args.front();
+    const std::vector<std::string> rest(args.begin() + 1, args.end());
+    try {
+        if (verb == "--help" || verb == "-h" || verb == "help") {
+            out << usage;
+            return exit_ok;
+        }
+        if (verb == "--version") {
+            out << "impulse " << IMPULSE_VERSION << "\n";
+            return exit_ok;
+        }
+        if (verb == "run") {
+            return run_verb(rest, out, err);
+        }
+        err << "impulse: unknown verb '" << verb << "'; see 'impulse --help'\n";
+        return exit_bad_input;
+    } catch (const InputError& e) {
+        err << e.what() << "\n";
+        return exit_bad_input;
+    } catch (const UsageError& e) {
+        err << "impulse " << verb << ": " << e.what() << "; see 'impulse " << verb << " --help'\n";
+        return exit_bad_input;
+    } catch (const std::exception& e) {
+        // Never a crash or a stack trace, even for a failure nobody foresaw.
+        err << "impulse " << verb << ": internal error: " << e.what() << "\n";
+        return exit_bad_input;
+    }
+}
+
+} // namespace impulse::harness::cli

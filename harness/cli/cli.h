@@ -1,0 +1,46 @@
+// The `impulse` command line: argument parsing and one function per verb.
+// main() only forwards here, so tests call the verbs directly.
+#pragma once
+
+#include <iosfwd>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace impulse::harness::cli {
+
+// Exit codes for every verb (DESIGN.md).
+inline constexpr int exit_ok = 0;
+inline constexpr int exit_failed = 1;    // a comparison or an expectation failed
+inline constexpr int exit_bad_input = 2; // the input or the set-up was wrong
+
+// Arguments after the verb: positionals and --options (as "--key value" or
+// "--key=value"). Flags take no value.
+struct Arguments {
+    std::vector<std::string> positional;
+    std::map<std::string, std::string> options;
+    std::vector<std::string> flags;
+
+    bool has_flag(const std::string& name) const;
+    std::optional<std::string> option(const std::string& name) const;
+};
+
+class UsageError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+// Throws UsageError for an unknown option or a missing value.
+Arguments parse_arguments(const std::vector<std::string>& args,
+                          const std::vector<std::string>& options_with_value,
+                          const std::vector<std::string>& known_flags);
+
+// A strictly parsed positive finite number of seconds, or UsageError naming the option.
+double positive_seconds(const std::string& option, const std::string& text);
+
+int main(int argc, char** argv);
+int run_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+
+} // namespace impulse::harness::cli

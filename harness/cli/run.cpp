@@ -1,0 +1,66 @@
+// `impulse run SCENE`: simulate one scene and write its trajectory.
+#include "run.h"
+
+#include "atomic_file.h"
+#include "cli.h"
+
+#include <ostream>
+
+namespace impulse::harness::cli {
+
+namespace {
+constexpr const char* run_help =
+    R"(usage: impulse run SCENE [--out FILE] [--dt S] [--integrator NAME] [--toi-tolerance S]
+
+Simulates SCENE (a path to an impulse/scene@1 file) with the impulse engine and
+writes its impulse/trajectory@1 to FILE (atomically) or to standard output.
+
+  --out FILE            write the trajectory here instead of standard output
+  --dt S                time step in seconds (overrides the scene's dt)
+  --integrator NAME     euler, symplectic-euler, verlet or rk4
+  --toi-tolerance S     time-of-impact tolerance in seconds
+
+Overrides change the physics and are recorded in the trajectory's solver block.
+)";
+} // namespace
+
+int run_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    const Arguments a =
+        parse_arguments(args, {"--out", "--dt", "--integrator", "--toi-tolerance"}, {"--help"});
+    if (a.has_flag("--help")) {
+        out << run_help;
+        return exit_ok;
+    }
+    if (a.positional.size() != 1) {
+        throw UsageError("needs exactly one SCENE, got " + std::to_string(a.positional.size()));
+    }
+    Overrides overrides;
+    if (const auto dt = a.option("--dt")) {
+        overrides.dt = positive_seconds("--dt", *dt);
+    }
+    if (const auto tol = a.option("--toi-tolerance")) {
+        overrides.toi_tolerance = positive_seconds("--toi-tolerance", *tol);
+    }
+    if (const auto name = a.option("--integrator")) {
+        Integrator integrator{};
+        if (!integrator_from_name(*name, integrator)) {
+            throw UsageError("--integrator must be euler, symplectic-euler, verlet or rk4, got '" +
+                             *name + "'");
+        }
+        overrides.integrator = integrator;
+    }
+
+    const Scene scene = load_scene(a.positional.front());
+    for (const std::string& warning : scene.warnings) {
+        err << "warning: " << warning << "\n";
+    }
+    const std::string text = write_trajectory(run_scene(scene, overrides));
+    if (const auto path = a.option("--out")) {
+        write_file_atomically(*path, text);
+    } else {
+        out << text;
+    }
+    return exit_ok;
+}
+
+} // namespace impulse::harness::cli

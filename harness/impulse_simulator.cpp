@@ -1,0 +1,159 @@
+// The impulse engine behind the harness's Simulator interface.
+#include "input_error.h"
+#include "number_format.h"
+#include "simulator.h"
+#include "world.h"
+
+namespace impulse::harness {
+
+namespace {
+
+std::string quoted(const std::string& s) {
+    return "\"" + s + "\"";
+}
+
+Body body_from(const SceneBody& spec) {
+    Body body;
+    body.shape = spec.shape;
+    body.state = {spec.position, spec.angle, spec.velocity, spec.angular_velocity};
+    if (!spec.is_static) {
+        body.inv_mass = 1.0 / spec.mass;
+        body.inv_inertia = spec.rotation ? 1.0 / spec.inertia : 0.0;
+    }
+    return body;
+}
+
+class ImpulseSimulator final : public Simulator {
+  public:
+    explicit ImpulseSimulator(const Scene& scene) : scene_(scene) {
+        std::vector<Body> bodies;
+        bodies.reserve(scene.bodies.size());
+        for (const SceneBody& spec : scene.bodies) {
+            bodies.push_back(body_from(spec));
+        }
+        world_ = make_world(std::move(bodies), scene.gravity, scene.restitution, scene.solver);
+    }
+
+    std::string engine() const override { return std::string("impulse ") + IMPULSE_VERSION; }
+
+    std::vector<std::pair<std::string, std::string>> settings() const override {
+        const SolverSettings& s = scene_.solver;
+        return {
+            {"integrator", quoted(integrator_name(s.integrator))},
+            {"toi", quoted(toi_method_name(s.toi))},
+            {"dt", format_double(scene_.dt)},
+            {"toi_tolerance", format_double(s.toi_tolerance)},
+            {"contact_tolerance", format_double(s.contact_tolerance)},
+            {"contacts", quoted(contact_mode_name(s.contacts))},
+            {"ccd", s.ccd ? "true" : "false"},
+            {"resting", s.resting ? "true" : "false"},
+        };
+    }
+
+    void step(double t0, double dt) override {
+        const std::optional<StepError> error = impulse::step(world_, t0, dt, events_);
+        if (error) {
+            throw InputError(scene_.file, "", describe(*error));
+        }
+    }
+
+    BodyState state(int index) const override { return world_.bodies[index].state; }
+
+    std::vector<TrajectoryEvent> take_events() override {
+        std::vector<TrajectoryEvent> out;
+        out.reserve(events_.size());
+        for (const CollisionEvent& e : events_) {
+            out.push_back({e.time,
+                           scene_.bodies[e.body_a].name,
+                           scene_.bodies[e.body_b].name,
+                           {e.point.x, e.point.y},
+                           {e.normal.x, e.normal.y},
+                           e.impulse,
+                           e.vn_before,
+                           e.vn_after});
+        }
+        events_.clear();
+        return out;
+    }
+
+  private:
+    std::string describe(const StepError& error) const {
+        const std::string a = "'" + scene_.bodies[error.body_a].name + "'";
+        const std::string b = "'" + scene_.bodies[error.body_b].name + "'";
+        const std::string at = "t = " + format_double(error.time) + " s";
+        switch (error.failure) {
+        case StepFailure::toi_not_converged:
+            return "the time-of-impact search between " + a + " and " + b + " at " + at +
+                   " did not reach solver.toi_tolerance = " +
+                   format_double(scene_.solver.toi_tolerance) + " s within " +
+                   std::to_string(scene_.solver.max_halvings) + " halvings; raise the tolerance";
+        case StepFailure::too_many_collisions:
+            return "more than " + std::to_string(scene_.solver.max_collisions_per_step) +
+                   " collisions between " + a + " and " + b + " within one step at " + at +
+                   ": the bounces no longer end (a Zeno cascade); end the scene earlier";
+        case StepFailure::resting_contact:
+            return a + " and " + b + " are in resting contact at " + at +
+                   " (touching, not approaching, interpenetrating just after), which the"
+                   " seed's collision-only model cannot resolve; end the scene before the"
+                   " bounces die out";
+        }
+        return "the simulation stopped at " + at;
+    }
+
+    Scene scene_;
+    World world_;
+    std::vector<CollisionEvent> events_;
+};
+
+} // namespace
+
+std::unique_ptr<Simulator> make_impulse_simulator(const Scene& scene) {
+    return std::make_unique<ImpulseSimulator>(scene);
+}
+
+Trajectory record(Simulator& simulator, const Scene& scene) {
+    Trajectory trajectory;
+    trajectory.scene = scene.name;
+    trajectory.scene_sha256 = scene.sha256;
+    trajectory.engine = simulator.engine();
+    trajectory.solver = simulator.settings();
+
+    std::vector<int> dynamic;
+    trajectory.columns.push_back("t");
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+        if (scene.bodies[i].is_static) {
+            continue;
+        }
+        dynamic.push_back(static_cast<int>(i));
+        for (const char* channel : {".x", ".y", ".angle", ".vx", ".vy", ".omega"}) {
+            trajectory.columns.push_back(scene.bodies[i].name + channel);
+        }
+    }
+
+    auto frame_at = [&](double t) {
+        std::vector<double> frame;
+        frame.reserve(trajectory.columns.size());
+        frame.push_back(t);
+        for (int index : dynamic) {
+            const BodyState s = simulator.state(index);
+            frame.insert(frame.end(), {s.position.x, s.position.y, s.angle, s.velocity.x,
+                                       s.velocity.y, s.angular_velocity});
+        }
+        return frame;
+    };
+
+    const long long steps = step_count(scene);
+    trajectory.frames.reserve(static_cast<std::size_t>(steps) + 1);
+    trajectory.frames.push_back(frame_at(0.0));
+    for (long long k = 0; k < steps; ++k) {
+        // Time as k dt, never accumulated, so it does not drift.
+        simulator.step(static_cast<double>(k) * scene.dt, scene.dt);
+        for (TrajectoryEvent& e : simulator.take_events()) {
+            trajectory.events.push_back(std::move(e));
+        }
+        trajectory.frames.push_back(frame_at(static_cast<double>(k + 1) * scene.dt));
+    }
+    return trajectory;
+}
+
+} // namespace impulse::harness

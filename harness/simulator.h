@@ -1,0 +1,38 @@
+// The one small interface through which the harness drives a simulator
+// (DESIGN.md, Layout): build from a scene, step, read state and collisions.
+// The impulse engine is one implementation; Box2D and a user's engine can be others.
+#pragma once
+
+#include "body.h"
+#include "scene.h"
+#include "trajectory.h"
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace impulse::harness {
+
+class Simulator {
+  public:
+    virtual ~Simulator() = default;
+    // "impulse 0.1.0", "box2d 2.4.1", ...
+    virtual std::string engine() const = 0;
+    // The settings that decide the physics, as (key, JSON value text) pairs.
+    virtual std::vector<std::pair<std::string, std::string>> settings() const = 0;
+    // Advances from t0 by dt; throws InputError when the simulator cannot go on.
+    virtual void step(double t0, double dt) = 0;
+    // State of the scene's body `index` (scene order).
+    virtual BodyState state(int index) const = 0;
+    // Collisions resolved since the last call, in order.
+    virtual std::vector<TrajectoryEvent> take_events() = 0;
+};
+
+std::unique_ptr<Simulator> make_impulse_simulator(const Scene& scene);
+
+// Runs a simulator over the whole scene and records frames at t = 0 and after
+// every step, t = k dt.
+Trajectory record(Simulator& simulator, const Scene& scene);
+
+} // namespace impulse::harness
