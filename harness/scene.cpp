@@ -21,6 +21,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -883,9 +884,487 @@ void read_bodies(const Node& node, Scene& scene) {
     reject_initial_overlaps(node, scene.bodies);
 }
 
-const std::vector<std::string> scene_keys = {"schema",   "name",        "description",
-                                             "gravity",  "restitution", "dt",
-                                             "duration", "solver",      "bodies"};
+// ---------------------------------------------------------------- tolerances
+
+// A count: a JSON number with no fractional part (3, or 3.0 written as a
+// float), from `low` to `high`.
+long long read_whole(const Node& node, long long low, long long high) {
+    const double value = read_number(node);
+    if (value != std::floor(value) || value < static_cast<double>(low) ||
+        value > static_cast<double>(high)) {
+        node.fail("must be a whole number from " + std::to_string(low) + " to " +
+                  std::to_string(high) + ", got " + number_text(value));
+    }
+    return static_cast<long long>(value);
+}
+
+double read_non_negative(const Node& node) {
+    const double value = read_number(node);
+    if (!(value >= 0.0)) {
+        node.fail("must be >= 0, got " + number_text(value));
+    }
+    return value;
+}
+
+// ULP distances are counted in a uint64_t; 2^53 is the largest whole number a
+// JSON reader is sure to hold exactly, and far more than any useful bound.
+constexpr long long max_ulp = 9007199254740992;
+
+ChannelTolerance read_channel_tolerance(const Node& node) {
+    require_object(node);
+    reject_unknown_keys(node, {"atol", "rtol", "ulp"});
+    // No silent defaults (DESIGN.md): a channel named must say how close is close.
+    if (!node.has("atol") && !node.has("rtol") && !node.has("ulp")) {
+        node.fail("must give at least one of atol, rtol or ulp; a tolerance has no defaults");
+    }
+    ChannelTolerance tolerance;
+    if (const std::optional<Node> atol = optional_member(node, "atol")) {
+        tolerance.atol = read_non_negative(*atol);
+    }
+    if (const std::optional<Node> rtol = optional_member(node, "rtol")) {
+        tolerance.rtol = read_non_negative(*rtol);
+    }
+    if (const std::optional<Node> ulp = optional_member(node, "ulp")) {
+        tolerance.ulp = static_cast<std::uint64_t>(read_whole(*ulp, 0, max_ulp));
+    }
+    return tolerance;
+}
+
+// "tolerance": {"position": {"atol": 1e-9}, ...}; channels not named stay
+// empty, so comparing them in tolerance mode is refused rather than guessed.
+void read_tolerances(const Node& node, Tolerances& tolerances) {
+    require_object(node);
+    reject_unknown_keys(node, std::vector<std::string>(channel_names.begin(), channel_names.end()));
+    for (int c = 0; c < channel_count; ++c) {
+        const std::string name = channel_names[static_cast<std::size_t>(c)];
+        if (const std::optional<Node> channel = optional_member(node, name)) {
+            tolerances[static_cast<Channel>(c)] = read_channel_tolerance(*channel);
+        }
+    }
+}
+
+// ---------------------------------------------------------------- expectations
+
+std::string vec2_text(Vec2 v) {
+    return "(" + number_text(v.x) + ", " + number_text(v.y) + ")";
+}
+
+// The index of the body a string value names.
+std::size_t read_body_reference(const Node& node, const Scene& scene) {
+    const std::string name = read_string(node);
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+        if (scene.bodies[i].name == name) {
+            return i;
+        }
+        names.push_back(scene.bodies[i].name);
+    }
+    node.fail("no body is named " + describe(node.json()) + "; the bodies are " + list_of(names));
+}
+
+// Static bodies have no columns in a trajectory and no motion to check.
+std::size_t read_dynamic_body_reference(const Node& node, const Scene& scene,
+                                        const std::string& needs) {
+    const std::size_t index = read_body_reference(node, scene);
+    if (scene.bodies[index].is_static) {
+        node.fail("'" + scene.bodies[index].name + "' is static; " + needs +
+                  " needs a dynamic body");
+    }
+    return index;
+}
+
+// The drop and the corner impact start from a gap above static ground
+// (PHYSICS.md, "Exact answers"): the smallest separation from any static body.
+// Empty when there is no static body.
+std::optional<double> gap_to_static_ground(const Scene& scene, std::size_t body) {
+    const SceneBody& falling = scene.bodies[body];
+    const Transform xf = transform_of(initial_state(falling));
+    std::optional<double> gap;
+    for (const SceneBody& ground : scene.bodies) {
+        if (!ground.is_static) {
+            continue;
+        }
+        const double g =
+            separation(falling.shape, xf, ground.shape, transform_of(initial_state(ground)));
+        gap = gap ? std::min(*gap, g) : g;
+    }
+    return gap;
+}
+
+void require_gap_above_ground(const Node& node, const Scene& scene, std::size_t body,
+                              const std::string& formula) {
+    const std::string name = "'" + scene.bodies[body].name + "'";
+    const std::optional<double> gap = gap_to_static_ground(scene, body);
+    if (!gap) {
+        node.fail(formula + " needs static ground for " + name +
+                  " to fall on, but every body is dynamic");
+    }
+    if (!(*gap > 0.0)) {
+        node.fail(formula + " needs a gap between " + name +
+                  " and the static ground at t = 0, but it touches it");
+    }
+}
+
+// Gravity (0, -g): the formulas are written for ground below and g >= 0.
+void require_downward_gravity(const Node& node, const Scene& scene, const std::string& formula,
+                              bool allow_zero) {
+    const Vec2 g = scene.gravity;
+    const bool downward = g.x == 0.0 && (allow_zero ? g.y <= 0.0 : g.y < 0.0);
+    if (!downward) {
+        node.fail(formula + " needs gravity (0, -g) with g " + (allow_zero ? ">=" : ">") +
+                  " 0, but the scene's gravity is " + vec2_text(g));
+    }
+}
+
+// The polygon's vertices in the world at t = 0.
+std::vector<Vec2> world_vertices(const SceneBody& body) {
+    const Transform xf = transform_of(initial_state(body));
+    std::vector<Vec2> out;
+    for (int i = 0; i < body.shape.polygon.count; ++i) {
+        out.push_back(apply(xf, body.shape.polygon.vertices[static_cast<std::size_t>(i)]));
+    }
+    return out;
+}
+
+// Below this height difference two corners count as level: the landing would
+// touch both (PHYSICS.md's formula is for a single corner).
+constexpr double level_corners = 1e-9;
+
+// Whether a polygon's lowest corner is alone (the next is at least
+// level_corners higher) and straight below the centre, to rounding of the
+// turn: then the ground's impulse passes through the centre of mass and a
+// body free to rotate still bounces without spin.
+bool lands_on_corner_below_centre(const SceneBody& body) {
+    const std::vector<Vec2> corners = world_vertices(body);
+    std::vector<Vec2> by_height = corners;
+    std::sort(by_height.begin(), by_height.end(), [](Vec2 a, Vec2 b) { return a.y < b.y; });
+    double size = 0.0;
+    for (const Vec2 c : corners) {
+        size = std::max(size, length(c - body.position));
+    }
+    return by_height[1].y - by_height[0].y >= level_corners &&
+           std::abs(by_height[0].x - body.position.x) <= 1e-12 * size;
+}
+
+// PHYSICS.md, drop: "no rotation", released at rest.
+void validate_drop(const Node& node, const Scene& scene, Expectation& expectation) {
+    const Node body_node = required_member(node, "body");
+    const std::size_t body = read_dynamic_body_reference(body_node, scene, "the drop formula");
+    expectation.body = scene.bodies[body].name;
+    expectation.impacts = static_cast<int>(read_whole(required_member(node, "impacts"), 1, 10000));
+    const std::string formula = "the drop formula";
+    require_downward_gravity(node, scene, formula, false);
+    const SceneBody& b = scene.bodies[body];
+    const std::string name = "'" + b.name + "'";
+    if (b.velocity != Vec2{}) {
+        body_node.fail(formula + " needs the body at rest at t = 0, but " + name +
+                       " has velocity " + vec2_text(b.velocity));
+    }
+    if (b.angular_velocity != 0.0) {
+        body_node.fail(formula + " needs the body at rest at t = 0, but " + name +
+                       " has angular velocity " + number_text(b.angular_velocity) + " rad/s");
+    }
+    // A free polygon lands on one corner first (the seed's single contact) and
+    // starts to spin, unless that corner is straight below its centre; a disc
+    // (impulse through its centre) and a non-rotating body bounce straight.
+    if (b.shape.type == ShapeType::polygon && b.rotation && !lands_on_corner_below_centre(b)) {
+        body_node.fail(formula + " has no rotation, but " + name +
+                       " is a polygon free to rotate that does not land on one corner below "
+                       "its centre; give it \"rotation\": false");
+    }
+    require_gap_above_ground(body_node, scene, body, formula);
+}
+
+// PHYSICS.md, single-corner impact: a rotating polygon, not spinning, falling
+// onto static ground on exactly one corner.
+void validate_corner_impact(const Node& node, const Scene& scene, Expectation& expectation) {
+    const Node body_node = required_member(node, "body");
+    const std::string formula = "the corner-impact formula";
+    const std::size_t body = read_dynamic_body_reference(body_node, scene, formula);
+    const SceneBody& b = scene.bodies[body];
+    expectation.body = b.name;
+    const std::string name = "'" + b.name + "'";
+    if (b.shape.type != ShapeType::polygon) {
+        body_node.fail(formula + " needs a polygon, but " + name + " is a circle");
+    }
+    if (!b.rotation) {
+        body_node.fail(formula + " needs a body free to rotate, but " + name +
+                       " has \"rotation\": false");
+    }
+    if (b.angular_velocity != 0.0) {
+        body_node.fail(formula + " needs angular velocity 0 at t = 0, but " + name + " has " +
+                       number_text(b.angular_velocity) + " rad/s");
+    }
+    require_downward_gravity(node, scene, formula, true);
+    std::vector<double> heights;
+    for (const Vec2 v : world_vertices(b)) {
+        heights.push_back(v.y);
+    }
+    std::sort(heights.begin(), heights.end());
+    if (!(heights[1] - heights[0] >= level_corners)) {
+        body_node.fail(formula + " needs one lowest corner, but " + name +
+                       " has two corners within " + number_text(level_corners) +
+                       " m of the same height (a flat landing)");
+    }
+    require_gap_above_ground(body_node, scene, body, formula);
+    if (scene.gravity.y == 0.0 && !(b.velocity.y < 0.0)) {
+        body_node.fail(formula + " without gravity needs the body moving down, but " + name +
+                       " has vy = " + number_text(b.velocity.y));
+    }
+}
+
+// Parallel within rounding: |cross| <= 1e-9 for unit vectors.
+constexpr double parallel_tolerance = 1e-9;
+
+// Whether some face of a polygon body faces along the unit vector u (either
+// way) at t = 0: a polygon pair's contact normal is always a face normal
+// (docs/engine.md, narrow phase).
+bool has_face_along(const SceneBody& body, Vec2 u) {
+    if (body.shape.type != ShapeType::polygon) {
+        return false;
+    }
+    const Rotation q = rotation_of(body.angle);
+    for (int i = 0; i < body.shape.polygon.count; ++i) {
+        const Vec2 n = rotate(q, body.shape.polygon.normals[static_cast<std::size_t>(i)]);
+        if (std::abs(cross(n, u)) <= parallel_tolerance) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// PHYSICS.md, head-on: 1D, no rotation, free space.
+void validate_head_on(const Node& node, const Scene& scene, Expectation& expectation) {
+    const std::string formula = "the head-on formula";
+    const Node a_node = required_member(node, "a");
+    const Node b_node = required_member(node, "b");
+    const std::size_t ia = read_dynamic_body_reference(a_node, scene, formula);
+    const std::size_t ib = read_dynamic_body_reference(b_node, scene, formula);
+    const SceneBody& a = scene.bodies[ia];
+    const SceneBody& b = scene.bodies[ib];
+    if (ia == ib) {
+        b_node.fail(formula + " needs two distinct bodies, but a and b are both '" + a.name + "'");
+    }
+    expectation.body = a.name;
+    expectation.other = b.name;
+    if (scene.gravity != Vec2{}) {
+        node.fail(formula + " needs zero gravity, but the scene's gravity is " +
+                  vec2_text(scene.gravity));
+    }
+    // An impulse through both centres turns neither body; for a free polygon
+    // the seed's single contact point is a corner, off the line of centres.
+    for (const auto& [body, body_node] : {std::pair{&a, &a_node}, {&b, &b_node}}) {
+        if (body->shape.type == ShapeType::polygon && body->rotation) {
+            body_node->fail(formula + " has no rotation, but '" + body->name +
+                            "' is a polygon free to rotate; give it \"rotation\": false");
+        }
+    }
+    const Vec2 line = b.position - a.position;
+    const Vec2 u = (1.0 / length(line)) * line;
+    const Vec2 relative = a.velocity - b.velocity;
+    const double closing = dot(relative, u);
+    const std::string pair = "'" + a.name + "' and '" + b.name + "'";
+    if (!(closing > 0.0)) {
+        node.fail(formula + " needs " + pair +
+                  " approaching along the line of their centres, but their closing speed is " +
+                  number_text(closing) + " m/s");
+    }
+    if (std::abs(cross(u, relative)) > parallel_tolerance * length(relative)) {
+        node.fail(formula + " needs " + pair +
+                  " approaching along the line of their centres, but their relative velocity " +
+                  vec2_text(relative) + " is not along " + vec2_text(u));
+    }
+    const bool polygons = a.shape.type == ShapeType::polygon || b.shape.type == ShapeType::polygon;
+    if (polygons && !has_face_along(a, u) && !has_face_along(b, u)) {
+        node.fail(formula + " needs the contact normal along the line of centres " + vec2_text(u) +
+                  ", but no face of " + pair + " is perpendicular to it");
+    }
+}
+
+const std::vector<std::string> conserved_quantities = {"momentum", "angular_momentum", "energy"};
+
+// PHYSICS.md: "Frictionless contact in free space conserves linear momentum
+// exactly and angular momentum about any fixed point; with e = 1 it conserves
+// kinetic energy".
+void require_conserved(const Node& node, const Scene& scene, const std::string& quantity) {
+    if (quantity == "energy") {
+        if (scene.restitution != 1.0) {
+            node.fail("energy is conserved only with restitution 1, but the scene's is " +
+                      number_text(scene.restitution) + "; use energy-non-increasing");
+        }
+        return;
+    }
+    const std::string what = quantity == "momentum" ? "momentum" : "angular momentum";
+    if (scene.gravity != Vec2{}) {
+        node.fail(what + " is conserved only in free space, but the scene's gravity is " +
+                  vec2_text(scene.gravity));
+    }
+    for (const SceneBody& body : scene.bodies) {
+        if (body.is_static) {
+            node.fail(what + " is conserved only in free space, but '" + body.name +
+                      "' is static and takes up " + what + " in a collision");
+        }
+    }
+}
+
+void validate_conserved(const Node& node, const Scene& scene, Expectation& expectation) {
+    const Node list = required_member(node, "quantities");
+    require_array(list);
+    if (list.json().empty()) {
+        list.fail("must name at least one of " + list_of(conserved_quantities));
+    }
+    for (std::size_t i = 0; i < list.json().size(); ++i) {
+        const Node item = list.element(i);
+        const bool known = item.json().is_string() &&
+                           std::find(conserved_quantities.begin(), conserved_quantities.end(),
+                                     item.json().get<std::string>()) != conserved_quantities.end();
+        if (!known) {
+            item.fail("must be one of " + list_of(conserved_quantities) + ", got " +
+                      describe(item.json()));
+        }
+        const std::string quantity = item.json().get<std::string>();
+        const auto previous =
+            std::find(expectation.quantities.begin(), expectation.quantities.end(), quantity);
+        if (previous != expectation.quantities.end()) {
+            item.fail("repeats quantities[" +
+                      std::to_string(previous - expectation.quantities.begin()) +
+                      "]; each quantity is checked once");
+        }
+        require_conserved(item, scene, quantity);
+        expectation.quantities.push_back(quantity);
+    }
+}
+
+// Literal values, read in the order they are listed, so a report lists them so.
+void read_literal_values(const Node& node, const std::vector<std::string>& scalars,
+                         const std::vector<std::string>& pairs, Expectation& expectation) {
+    for (const std::string& key : scalars) {
+        if (const std::optional<Node> value = optional_member(node, key)) {
+            expectation.values.emplace_back(key, read_number(*value));
+        }
+    }
+    for (const std::string& key : pairs) {
+        if (const std::optional<Node> value = optional_member(node, key)) {
+            const Vec2 v = read_vec2(*value);
+            expectation.values.emplace_back(key + ".x", v.x);
+            expectation.values.emplace_back(key + ".y", v.y);
+        }
+    }
+}
+
+// The largest event index accepted: far more than any run records.
+constexpr long long max_event_index = 1'000'000'000;
+
+void validate_event(const Node& node, const Scene& scene, Expectation& expectation) {
+    expectation.index =
+        static_cast<std::size_t>(read_whole(required_member(node, "index"), 0, max_event_index));
+    if (const std::optional<Node> a = optional_member(node, "a")) {
+        expectation.body = scene.bodies[read_body_reference(*a, scene)].name;
+    }
+    if (const std::optional<Node> b = optional_member(node, "b")) {
+        expectation.other = scene.bodies[read_body_reference(*b, scene)].name;
+    }
+    read_literal_values(node, {"t", "impulse", "vn_before", "vn_after"}, {"point", "normal"},
+                        expectation);
+    if (expectation.body.empty() && expectation.other.empty() && expectation.values.empty()) {
+        node.fail("an event expectation must give at least one of a, b, t, impulse, vn_before, "
+                  "vn_after, point or normal");
+    }
+}
+
+void validate_state(const Node& node, const Scene& scene, Expectation& expectation) {
+    expectation.body = scene
+                           .bodies[read_dynamic_body_reference(required_member(node, "body"), scene,
+                                                               "a state expectation")]
+                           .name;
+    const Node t = required_member(node, "t");
+    expectation.t = read_non_negative(t);
+    // Frames are recorded at k dt (DESIGN.md): any other time has no frame.
+    const double k = std::round(expectation.t / scene.dt);
+    if (std::abs(expectation.t - k * scene.dt) > 1e-9 * scene.dt ||
+        k > static_cast<double>(step_count(scene))) {
+        t.fail("must be the time of a frame, a multiple of dt = " + number_text(scene.dt) +
+               " s up to the end of the run, got " + number_text(expectation.t));
+    }
+    read_literal_values(node, {"x", "y", "angle", "vx", "vy", "omega"}, {}, expectation);
+    if (expectation.values.empty()) {
+        node.fail("a state expectation must give at least one of x, y, angle, vx, vy or omega");
+    }
+}
+
+struct ExpectationKind {
+    const char* name;
+    Expectation::Kind kind;
+    std::vector<std::string> keys; // besides kind, description, atol, rtol
+    void (*validate)(const Node&, const Scene&, Expectation&);
+};
+
+void validate_nothing(const Node&, const Scene&, Expectation&) {}
+
+const std::vector<ExpectationKind>& expectation_kinds() {
+    static const std::vector<ExpectationKind> kinds = {
+        {"drop", Expectation::Kind::drop, {"body", "impacts"}, validate_drop},
+        {"corner-impact", Expectation::Kind::corner_impact, {"body"}, validate_corner_impact},
+        {"head-on", Expectation::Kind::head_on, {"a", "b"}, validate_head_on},
+        {"conserved", Expectation::Kind::conserved, {"quantities"}, validate_conserved},
+        {"energy-non-increasing", Expectation::Kind::energy_non_increasing, {}, validate_nothing},
+        {"event",
+         Expectation::Kind::event,
+         {"index", "a", "b", "t", "impulse", "vn_before", "vn_after", "point", "normal"},
+         validate_event},
+        {"state",
+         Expectation::Kind::state,
+         {"body", "t", "x", "y", "angle", "vx", "vy", "omega"},
+         validate_state},
+    };
+    return kinds;
+}
+
+const ExpectationKind& read_expectation_kind(const Node& node) {
+    std::vector<std::string> names;
+    for (const ExpectationKind& kind : expectation_kinds()) {
+        if (node.json().is_string() && node.json().get<std::string>() == kind.name) {
+            return kind;
+        }
+        names.push_back(std::string("\"") + kind.name + "\"");
+    }
+    node.fail("must be one of " + list_of(names) + ", got " + describe(node.json()));
+}
+
+Expectation read_expectation(const Node& node, const Scene& scene) {
+    require_object(node);
+    const ExpectationKind& kind = read_expectation_kind(required_member(node, "kind"));
+    std::vector<std::string> keys = {"kind", "description", "atol", "rtol"};
+    keys.insert(keys.end(), kind.keys.begin(), kind.keys.end());
+    reject_unknown_keys(node, keys);
+    Expectation expectation;
+    expectation.kind = kind.kind;
+    expectation.path = node.path();
+    expectation.description = read_string_or(node, "description", "");
+    // No silent defaults: every expectation says how close is close enough.
+    if (!node.has("atol") && !node.has("rtol")) {
+        node.fail("must give atol or rtol (or both); an expectation has no default tolerance");
+    }
+    if (const std::optional<Node> atol = optional_member(node, "atol")) {
+        expectation.atol = read_non_negative(*atol);
+    }
+    if (const std::optional<Node> rtol = optional_member(node, "rtol")) {
+        expectation.rtol = read_non_negative(*rtol);
+    }
+    kind.validate(node, scene, expectation);
+    return expectation;
+}
+
+void read_expectations(const Node& node, Scene& scene) {
+    require_array(node);
+    for (std::size_t i = 0; i < node.json().size(); ++i) {
+        scene.expectations.push_back(read_expectation(node.element(i), scene));
+    }
+}
+
+const std::vector<std::string> scene_keys = {"schema",      "name",      "description", "gravity",
+                                             "restitution", "dt",        "duration",    "solver",
+                                             "bodies",      "tolerance", "expectations"};
 
 Scene read_scene(const Node& root) {
     if (!root.json().is_object()) {
@@ -907,6 +1386,13 @@ Scene read_scene(const Node& root) {
         read_solver(*solver, scene.solver);
     }
     read_bodies(required_member(root, "bodies"), scene);
+    // Both refer to bodies, so they are read once the bodies are known.
+    if (const std::optional<Node> tolerance = optional_member(root, "tolerance")) {
+        read_tolerances(*tolerance, scene.tolerances);
+    }
+    if (const std::optional<Node> expectations = optional_member(root, "expectations")) {
+        read_expectations(*expectations, scene);
+    }
     return scene;
 }
 

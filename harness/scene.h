@@ -4,6 +4,7 @@
 
 #include "shape.h"
 #include "solver_settings.h"
+#include "tolerance.h"
 #include "vec2.h"
 
 #include <string>
@@ -26,6 +27,36 @@ struct SceneBody {
     bool rotation = true; // false: infinite inertia
 };
 
+// An answer the scene declares and every run checks (DESIGN.md: "A scene may
+// declare expectations that every run checks"). The exact ones are computed
+// from the scene's own parameters by the formulas of PHYSICS.md, so they stay
+// right when a parameter changes; the literal ones carry hand-derived numbers.
+struct Expectation {
+    enum class Kind {
+        drop,                  // PHYSICS.md drop: impact times, rebound speeds, apex ladder
+        corner_impact,         // PHYSICS.md single-corner impact on static ground
+        head_on,               // PHYSICS.md 1D head-on collision of two free bodies
+        conserved,             // linear momentum, angular momentum about the origin, energy
+        energy_non_increasing, // e < 1: energy never grows from frame to frame
+        event,                 // literal values of one collision event
+        state,                 // literal values of one body at one frame time
+    };
+    Kind kind = Kind::conserved;
+    std::string path;        // JSON path of this expectation, e.g. "expectations[2]"
+    std::string description; // optional, shown in reports
+    std::string body;        // drop, corner_impact, state; head_on: body A
+    std::string other;       // head_on: body B
+    int impacts = 0;         // drop: how many impacts to check
+    std::vector<std::string> quantities; // conserved: "momentum", "angular_momentum", "energy"
+    std::size_t index = 0;   // event: which event (0-based)
+    double t = 0.0;          // state: the frame time
+    // event / state: field name -> expected value ("t", "impulse", "vn_before",
+    // "vn_after", "point.x", "normal.y", ...; "x", "y", "angle", "vx", "vy", "omega").
+    std::vector<std::pair<std::string, double>> values;
+    double atol = 0.0;
+    double rtol = 0.0;
+};
+
 struct Scene {
     std::string file; // as given on the command line, for messages
     std::string name;
@@ -36,6 +67,8 @@ struct Scene {
     double duration = 0.0;
     SolverSettings solver;
     std::vector<SceneBody> bodies;
+    Tolerances tolerances;                 // "tolerance": per channel, empty when not given
+    std::vector<Expectation> expectations; // "expectations", in file order
     std::string sha256;                // of the canonical JSON of the file's content
     std::vector<std::string> warnings; // e.g. a polygon recentred on its centroid
 };

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace impulse::harness {
 
@@ -42,5 +43,33 @@ struct Tolerances {
 std::uint64_t ulp_distance(double a, double b);
 
 bool within(const ChannelTolerance& tolerance, double gold, double value);
+
+struct Trajectory;
+
+// The channel a frame column measures: "t" -> event_time (frame times are on
+// the same clock as event times, and a tolerance mode that compared them
+// exactly could not absorb a changed time accumulation), "BODY.x" / "BODY.y"
+// -> position, "BODY.angle" -> angle, "BODY.vx" / "BODY.vy" -> velocity,
+// "BODY.omega" -> angular_velocity; nullopt for any other column.
+std::optional<Channel> column_channel(const std::string& column);
+
+// Applies one command-line tolerance option to `base` and returns the result.
+// `option` is "--atol", "--rtol" or "--ulp" and names the field it sets.
+// `text` is one value for every channel ("1e-9") or channel=value pairs
+// separated by commas ("position=1e-9,velocity=1e-6"). The value replaces that
+// field of that channel and keeps the channel's other fields; a channel
+// without a tolerance in `base` gets one whose other fields are 0 (nothing
+// added to the bound). atol and rtol are finite numbers >= 0, ulp a whole
+// number >= 0. Throws std::invalid_argument, one sentence naming the option
+// and the bad part, for anything else (the command line turns it into exit 2).
+Tolerances parse_tolerance_option(const std::string& option, const std::string& text,
+                                  Tolerances base);
+
+// The channels `gold` has values to compare for (its frame columns when it has
+// frames; event_time, position, angle, impulse and velocity when it has
+// events) that `tolerances` gives no tolerance for, in channel order. Tolerance
+// mode refuses to run while this is non-empty: there are no silent defaults.
+std::vector<Channel> channels_without_tolerance(const Trajectory& gold,
+                                                const Tolerances& tolerances);
 
 } // namespace impulse::harness

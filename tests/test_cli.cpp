@@ -88,7 +88,7 @@ TEST_CASE("A bad scene gives exit 2, one sentence with file and JSON path, no ou
 }
 
 TEST_CASE("Bad options and missing files give exit 2 and name the problem", "[cli]") {
-    const std::string drop = scene_path("drop");
+    const std::string drop = scene_path("drop-box");
     CHECK(impulse_tool("run " + drop + " --dt -1").exit_code == 2);
     CHECK(impulse_tool("run " + drop + " --dt abc").err.find("--dt") != std::string::npos);
     CHECK(impulse_tool("run " + drop + " --integrator leapfrog").exit_code == 2);
@@ -104,7 +104,7 @@ TEST_CASE("Bad options and missing files give exit 2 and name the problem", "[cl
 }
 
 TEST_CASE("run writes a trajectory that reads back bit for bit", "[cli]") {
-    for (const char* name : {"drop", "spin", "glancing"}) {
+    for (const char* name : {"drop-box", "spin", "glancing"}) {
         const fs::path out =
             fs::temp_directory_path() / (std::string("impulse-cli-") + name + ".json");
         const Outcome o = impulse_tool("run " + scene_path(name) + " --out " + out.string());
@@ -121,7 +121,7 @@ TEST_CASE("run writes a trajectory that reads back bit for bit", "[cli]") {
 }
 
 TEST_CASE("Overrides change the physics and are recorded", "[cli]") {
-    const Outcome o = impulse_tool("run " + scene_path("drop") + " --dt 0.01 --integrator rk4");
+    const Outcome o = impulse_tool("run " + scene_path("drop-box") + " --dt 0.01 --integrator rk4");
     REQUIRE(o.exit_code == 0);
     const impulse::harness::Trajectory t = impulse::harness::read_trajectory(o.out, "stdout");
     bool recorded = false;

@@ -17,8 +17,12 @@ constexpr const char* usage =
 usage: impulse <verb> [options]
 
 verbs:
-  run SCENE [--out FILE] [--dt S] [--integrator NAME] [--toi-tolerance S]
-        simulate a scene and write its trajectory (stdout without --out)
+  run SCENE          simulate a scene and write its trajectory
+  check [SCENE...]   the gate: simulate scenes and diff them against their goldens
+  bless [SCENE...]   write goldens (scripts/regen-goldens calls this)
+  diff A B           diff two trajectory files with the rules of check
+  render SCENE|TRAJECTORY
+                     an SVG picture of the motion
 
 options:
   --help       this text; 'impulse <verb> --help' describes one verb
@@ -104,6 +108,18 @@ int main(int argc, char** argv) {
         }
         if (verb == "run") {
             return run_verb(rest, out, err);
+        }
+        if (verb == "check") {
+            return check_verb(rest, out, err);
+        }
+        if (verb == "bless") {
+            return bless_verb(rest, out, err);
+        }
+        if (verb == "diff") {
+            return diff_verb(rest, out, err);
+        }
+        if (verb == "render") {
+            return render_verb(rest, out, err);
         }
         err << "impulse: unknown verb '" << verb << "'; see 'impulse --help'\n";
         return exit_bad_input;

@@ -41,6 +41,12 @@ Arguments parse_arguments(const std::vector<std::string>& args,
 double positive_seconds(const std::string& option, const std::string& text);
 
 int main(int argc, char** argv);
+// One function per verb; each returns the exit code and throws InputError or
+// UsageError for bad input (main turns those into exit code 2).
 int run_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int check_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int bless_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int diff_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int render_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 } // namespace impulse::harness::cli

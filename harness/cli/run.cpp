@@ -3,6 +3,8 @@
 
 #include "atomic_file.h"
 #include "cli.h"
+#include "expectations.h"
+#include "number_format.h"
 
 #include <ostream>
 
@@ -21,6 +23,8 @@ writes its impulse/trajectory@1 to FILE (atomically) or to standard output.
   --toi-tolerance S     time-of-impact tolerance in seconds
 
 Overrides change the physics and are recorded in the trajectory's solver block.
+The scene's declared expectations are checked: exit 1 when one fails (the
+trajectory is still written), 2 for bad input.
 )";
 } // namespace
 
@@ -54,13 +58,25 @@ int run_verb(const std::vector<std::string>& args, std::ostream& out, std::ostre
     for (const std::string& warning : scene.warnings) {
         err << "warning: " << warning << "\n";
     }
-    const std::string text = write_trajectory(run_scene(scene, overrides));
+    const Trajectory trajectory = run_scene(scene, overrides);
+    const std::string text = write_trajectory(trajectory);
     if (const auto path = a.option("--out")) {
         write_file_atomically(*path, text);
     } else {
         out << text;
     }
-    return exit_ok;
+    // The scene's declared answers are checked on every run, overrides included:
+    // a coarser dt that breaks an exact answer is worth knowing.
+    int failed = 0;
+    for (const ExpectationResult& r : evaluate_expectations(scene, trajectory)) {
+        if (!r.passed) {
+            ++failed;
+            err << scene.file << ": " << r.path << ": " << r.what << ": expected "
+                << format_double(r.expected) << ", got " << format_double(r.actual)
+                << (r.detail.empty() ? "" : " (" + r.detail + ")") << "\n";
+        }
+    }
+    return failed > 0 ? exit_failed : exit_ok;
 }
 
 } // namespace impulse::harness::cli

@@ -1,0 +1,199 @@
+// `impulse check [SCENE...]`: the gate.
+#include "atomic_file.h"
+#include "cli.h"
+#include "gate.h"
+#include "input_error.h"
+#include "number_format.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+
+namespace impulse::harness::cli {
+
+namespace {
+
+constexpr const char* check_help = R"(usage: impulse check [SCENE...] [options]
+
+The gate: simulates scenes again and compares each with its golden
+(ROOT/goldens/NAME.json), exactly by default: every double bit-identical,
+-0.0 and +0.0 told apart. With no SCENE, every canonical scene in
+ROOT/harness/scenes/. A SCENE is a name or a path. Every scene's declared
+expectations are checked too; a scene that breaks one fails even when its
+golden matches.
+
+  --root DIR        where harness/scenes/ and goldens/ are (default: .)
+  --tolerance       compare within per-channel tolerances instead of exactly:
+                    |new - gold| <= atol + rtol |gold|, or at most `ulp` ULPs apart;
+                    from the scene's "tolerance" block and these options
+  --atol SPEC       SPEC is a number for every channel, or CHANNEL=V[,CHANNEL=V...]
+  --rtol SPEC       channels: position, angle, velocity, angular_velocity,
+  --ulp SPEC          impulse, event_time
+  --junit FILE      JUnit XML: one testcase per scene, <failure> for a physics
+                    mismatch, <error> for a broken input or golden
+  --report DIR      summary.md (for a pull request) and index.html with pictures
+  -j N, --jobs N    check N scenes at once (results identical to -j 1)
+  --shard K/N       only the scenes of shard K of N (a scene's shard depends on
+                    its name alone)
+
+CI mode (CI set to anything but empty, 0 or false): a golden without a scene
+fails too. check never writes to goldens/.
+Exit: 0 all held, 1 a diff, a stale golden or a failed expectation, 2 a broken
+scene, a missing or corrupt golden, or a bad option.
+)";
+
+const char* status_word(SceneCheck::Status status) {
+    switch (status) {
+    case SceneCheck::Status::passed:
+        return "ok";
+    case SceneCheck::Status::failed:
+        return "FAILED";
+    case SceneCheck::Status::error:
+        return "ERROR";
+    }
+    return "?";
+}
+
+int parse_count(const std::string& option, const std::string& text, int low) {
+    int value = 0;
+    std::istringstream in(text);
+    if (!(in >> value) || !in.eof() || value < low) {
+        throw UsageError(option + " must be a whole number >= " + std::to_string(low) + ", got '" +
+                         text + "'");
+    }
+    return value;
+}
+
+std::pair<int, int> parse_shard(const std::string& text) {
+    const std::size_t slash = text.find('/');
+    if (slash == std::string::npos) {
+        throw UsageError("--shard must be K/N, got '" + text + "'");
+    }
+    const int k = parse_count("--shard K", text.substr(0, slash), 1);
+    const int n = parse_count("--shard N", text.substr(slash + 1), 1);
+    if (k > n) {
+        throw UsageError("--shard K/N needs K <= N, got '" + text + "'");
+    }
+    return {k, n};
+}
+
+// "-j 4" and "-j4" are spelled "--jobs 4" for the parser.
+std::vector<std::string> normalise_jobs(const std::vector<std::string>& args) {
+    std::vector<std::string> out;
+    for (const std::string& a : args) {
+        if (a == "-j") {
+            out.push_back("--jobs");
+        } else if (a.size() > 2 && a.compare(0, 2, "-j") == 0) {
+            out.push_back("--jobs");
+            out.push_back(a.substr(2));
+        } else {
+            out.push_back(a);
+        }
+    }
+    return out;
+}
+
+} // namespace
+
+int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostream& err) {
+    const Arguments a = parse_arguments(
+        normalise_jobs(raw),
+        {"--root", "--atol", "--rtol", "--ulp", "--junit", "--report", "--jobs", "--shard"},
+        {"--help", "--tolerance"});
+    if (a.has_flag("--help")) {
+        out << check_help;
+        return exit_ok;
+    }
+    GateRoot root;
+    root.root = a.option("--root").value_or(".");
+    CheckOptions options;
+    options.tolerance_mode = a.has_flag("--tolerance");
+    options.atol = a.option("--atol");
+    options.rtol = a.option("--rtol");
+    options.ulp = a.option("--ulp");
+    if (!options.tolerance_mode && (options.atol || options.rtol || options.ulp)) {
+        throw UsageError("--atol, --rtol and --ulp apply in tolerance mode: add --tolerance");
+    }
+    if (const auto jobs = a.option("--jobs")) {
+        options.jobs = parse_count("--jobs", *jobs, 1);
+    }
+    const bool all = a.positional.empty();
+    std::vector<std::string> paths;
+    if (all) {
+        paths = canonical_scenes(root);
+    } else {
+        for (const std::string& argument : a.positional) {
+            paths.push_back(resolve_scene(root, argument));
+        }
+    }
+    if (const auto spec = a.option("--shard")) {
+        const auto [k, n] = parse_shard(*spec);
+        paths = shard(paths, k, n);
+    }
+
+    const bool ci = ci_mode();
+    out << "check: " << paths.size() << " scene" << (paths.size() == 1 ? "" : "s") << ", "
+        << (options.tolerance_mode ? "within tolerances" : "exact") << (ci ? ", CI mode" : "")
+        << "\n";
+    std::vector<SceneCheck> checks = check_scenes(root, paths, options);
+
+    if (all) {
+        for (const std::string& golden : unreferenced_goldens(root)) {
+            if (ci) {
+                SceneCheck orphan;
+                orphan.name = std::filesystem::path(golden).stem().string();
+                orphan.golden_file = golden;
+                orphan.status = SceneCheck::Status::failed;
+                orphan.message = golden + ": unreferenced golden: no canonical scene is named '" +
+                                 orphan.name + "'; delete it with scripts/regen-goldens --prune";
+                checks.push_back(orphan);
+            } else {
+                err << "warning: " << golden
+                    << ": unreferenced golden (no scene of that name); scripts/regen-goldens "
+                       "--prune deletes it, CI fails on it\n";
+            }
+        }
+    }
+
+    std::size_t width = 4;
+    for (const SceneCheck& c : checks) {
+        width = std::max(width, c.name.size());
+    }
+    int passed = 0, failed = 0, errors = 0;
+    for (const SceneCheck& c : checks) {
+        out << "  " << std::left << std::setw(7) << status_word(c.status)
+            << std::setw(static_cast<int>(width) + 2) << c.name;
+        if (c.status == SceneCheck::Status::passed) {
+            ++passed;
+            out << std::fixed << std::setprecision(3) << c.seconds << " s\n";
+            out.unsetf(std::ios::fixed);
+        } else {
+            (c.status == SceneCheck::Status::failed ? failed : errors) += 1;
+            out << c.message << "\n";
+        }
+    }
+    for (const SceneCheck& c : checks) {
+        if (!c.details.empty()) {
+            out << "\n"
+                << c.name << " (" << c.scene_file << " vs " << c.golden_file << "):\n"
+                << c.details;
+        }
+    }
+    out << checks.size() << " scene" << (checks.size() == 1 ? "" : "s") << ": " << passed
+        << " passed, " << failed << " failed, " << errors << " error" << (errors == 1 ? "" : "s")
+        << "\n";
+
+    if (const auto junit = a.option("--junit")) {
+        write_file_atomically(*junit, junit_xml(checks));
+    }
+    if (const auto dir = a.option("--report")) {
+        write_report(*dir, checks);
+        out << "report: " << *dir << "/summary.md, " << *dir << "/index.html\n";
+    }
+    return errors > 0 ? exit_bad_input : failed > 0 ? exit_failed : exit_ok;
+}
+
+} // namespace impulse::harness::cli

@@ -1,0 +1,814 @@
+// Checking a run against the answers its scene declares (DESIGN.md: "A scene
+// may declare expectations that every run checks").
+//
+// Everything here reads the trajectory only (its NAME.x ... NAME.omega columns
+// and its events), never the engine, so the same checks hold any simulator to
+// the same physics. The exact answers are computed from the scene's own
+// parameters by the formulas of PHYSICS.md, "Exact answers for checking"; the
+// loader (scene.cpp) has already refused scenes that break their preconditions.
+#include "expectations.h"
+
+#include "manifold.h"
+#include "number_format.h"
+#include "rotation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace impulse::harness {
+
+namespace {
+
+constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
+
+// ---------------------------------------------------------------- text
+
+// Reports print expected and actual with format_double, which refuses
+// non-finite values; this one is for sentences and takes anything.
+std::string number(double value) {
+    if (std::isnan(value)) {
+        return "NaN";
+    }
+    if (std::isinf(value)) {
+        return value > 0.0 ? "inf" : "-inf";
+    }
+    return format_double(value);
+}
+
+std::string quoted(const std::string& name) {
+    return "'" + name + "'";
+}
+
+// ---------------------------------------------------------------- judging one value
+
+// An exact answer and the size of the terms it is made of. The relative
+// tolerance applies to the scale, not to the value: a post-impact velocity that
+// cancels to zero (equal masses, e = 1) comes out of the simulation as a
+// difference of numbers of the size of the terms, rounded, and holding it to
+// an absolute zero would fail every correct engine.
+struct Exact {
+    double value = 0.0;
+    double scale = 0.0;
+};
+
+// A value whose terms do not cancel: its own size is the scale.
+Exact plain(double value) {
+    return {value, std::abs(value)};
+}
+
+// The checks of one expectation, with the prefix every line of it shares.
+class Checks {
+  public:
+    Checks(const Expectation& expectation, std::string subject, std::vector<ExpectationResult>& out)
+        : expectation_(expectation), subject_(std::move(subject)), out_(out) {}
+
+    // Passes when |actual - expected| <= atol + rtol * scale.
+    void value(const std::string& what, Exact expected, double actual) {
+        ExpectationResult r = start(what);
+        const double allowed = expectation_.atol + expectation_.rtol * expected.scale;
+        const double off = std::abs(actual - expected.value);
+        r.passed = off <= allowed; // false for NaN
+        r.expected = finite_or_zero(expected.value);
+        r.actual = finite_or_zero(actual);
+        if (!std::isfinite(expected.value)) {
+            r.passed = false;
+            r.detail = "the exact formula gives " + number(expected.value) +
+                       " for this scene, so it cannot be checked";
+        } else if (!std::isfinite(actual)) {
+            r.detail = "the run gave " + number(actual);
+        } else if (!r.passed) {
+            r.detail = "off by " + number(off) + ", more than the " + number(allowed) +
+                       " allowed (atol " + number(expectation_.atol) + " + rtol " +
+                       number(expectation_.rtol) + " x " + number(expected.scale) + ")";
+        }
+        out_.push_back(std::move(r));
+    }
+
+    // A check judged by its caller; `detail` is kept only when it failed.
+    void judged(const std::string& what, bool passed, double expected, double actual,
+                const std::string& detail) {
+        ExpectationResult r = start(what);
+        r.passed = passed;
+        r.expected = finite_or_zero(expected);
+        r.actual = finite_or_zero(actual);
+        if (!passed) {
+            r.detail = detail;
+        }
+        out_.push_back(std::move(r));
+    }
+
+    // A check that failed without a number to compare (a missing event or
+    // frame); expected and actual say what was wanted and found when they can.
+    void failure(const std::string& what, const std::string& detail, double expected = 0.0,
+                 double actual = 0.0) {
+        judged(what, false, expected, actual, detail);
+    }
+
+    // Names compared as strings: no tolerance applies.
+    void name(const std::string& what, const std::string& expected, const std::string& actual) {
+        ExpectationResult r = start(what);
+        r.passed = expected == actual;
+        if (!r.passed) {
+            r.detail = "expected " + quoted(expected) + ", got " + quoted(actual);
+        }
+        out_.push_back(std::move(r));
+    }
+
+    const Expectation& expectation() const { return expectation_; }
+
+  private:
+    static double finite_or_zero(double value) { return std::isfinite(value) ? value : 0.0; }
+
+    ExpectationResult start(const std::string& what) const {
+        ExpectationResult r;
+        r.path = expectation_.path;
+        r.what = subject_.empty() ? what : what.empty() ? subject_ : subject_ + ": " + what;
+        return r;
+    }
+
+    const Expectation& expectation_;
+    std::string subject_;
+    std::vector<ExpectationResult>& out_;
+};
+
+// ---------------------------------------------------------------- reading the trajectory
+
+// Where one body's six values sit in a frame (DESIGN.md, trajectory format).
+struct BodyColumns {
+    std::size_t x = 0, y = 0, angle = 0, vx = 0, vy = 0, omega = 0;
+};
+
+std::optional<std::size_t> column_index(const Trajectory& trajectory, const std::string& name) {
+    const auto it = std::find(trajectory.columns.begin(), trajectory.columns.end(), name);
+    if (it == trajectory.columns.end()) {
+        return std::nullopt;
+    }
+    return static_cast<std::size_t>(it - trajectory.columns.begin());
+}
+
+std::optional<BodyColumns> body_columns(const Trajectory& trajectory, const std::string& body) {
+    std::size_t found[6] = {};
+    const char* suffixes[6] = {".x", ".y", ".angle", ".vx", ".vy", ".omega"};
+    for (std::size_t i = 0; i < 6; ++i) {
+        const std::optional<std::size_t> index = column_index(trajectory, body + suffixes[i]);
+        if (!index) {
+            return std::nullopt;
+        }
+        found[i] = *index;
+    }
+    return BodyColumns{found[0], found[1], found[2], found[3], found[4], found[5]};
+}
+
+// A short frame (a broken trajectory) reads as NaN, which fails every check.
+double at(const std::vector<double>& frame, std::size_t column) {
+    return column < frame.size() ? frame[column] : not_a_number;
+}
+
+double frame_time(const std::vector<double>& frame) {
+    return at(frame, 0);
+}
+
+struct Motion {
+    Vec2 position;
+    double angle = 0.0;
+    Vec2 velocity;
+    double omega = 0.0;
+};
+
+Motion motion_in(const std::vector<double>& frame, const BodyColumns& c) {
+    return {{at(frame, c.x), at(frame, c.y)},
+            at(frame, c.angle),
+            {at(frame, c.vx), at(frame, c.vy)},
+            at(frame, c.omega)};
+}
+
+double field_of(const Motion& m, const std::string& field) {
+    if (field == "x") {
+        return m.position.x;
+    }
+    if (field == "y") {
+        return m.position.y;
+    }
+    if (field == "angle") {
+        return m.angle;
+    }
+    if (field == "vx") {
+        return m.velocity.x;
+    }
+    if (field == "vy") {
+        return m.velocity.y;
+    }
+    return field == "omega" ? m.omega : not_a_number;
+}
+
+double field_of(const TrajectoryEvent& e, const std::string& field) {
+    if (field == "t") {
+        return e.t;
+    }
+    if (field == "impulse") {
+        return e.impulse;
+    }
+    if (field == "vn_before") {
+        return e.vn_before;
+    }
+    if (field == "vn_after") {
+        return e.vn_after;
+    }
+    if (field == "point.x" || field == "point.y") {
+        return e.point[field == "point.x" ? 0 : 1];
+    }
+    if (field == "normal.x" || field == "normal.y") {
+        return e.normal[field == "normal.x" ? 0 : 1];
+    }
+    return not_a_number;
+}
+
+bool involves(const TrajectoryEvent& e, const std::string& body) {
+    return e.a == body || e.b == body;
+}
+
+// The indices of the events that involve `body`, in order.
+std::vector<std::size_t> events_of(const Trajectory& trajectory, const std::string& body) {
+    std::vector<std::size_t> out;
+    for (std::size_t i = 0; i < trajectory.events.size(); ++i) {
+        if (involves(trajectory.events[i], body)) {
+            out.push_back(i);
+        }
+    }
+    return out;
+}
+
+// The first frame recorded after event `index`, when no later event touching
+// any of `bodies` happens up to it: only then does the frame show the state
+// this collision left (plus the free motion since). Empty otherwise.
+const std::vector<double>* frame_after_event(const Trajectory& trajectory, std::size_t index,
+                                             const std::vector<std::string>& bodies) {
+    const double t = trajectory.events[index].t;
+    const auto frame =
+        std::find_if(trajectory.frames.begin(), trajectory.frames.end(),
+                     [t](const std::vector<double>& f) { return frame_time(f) > t; });
+    if (frame == trajectory.frames.end()) {
+        return nullptr;
+    }
+    for (std::size_t k = index + 1; k < trajectory.events.size(); ++k) {
+        const TrajectoryEvent& later = trajectory.events[k];
+        if (later.t > frame_time(*frame)) {
+            break;
+        }
+        for (const std::string& body : bodies) {
+            if (involves(later, body)) {
+                return nullptr;
+            }
+        }
+    }
+    return &*frame;
+}
+
+const SceneBody* scene_body(const Scene& scene, const std::string& name) {
+    for (const SceneBody& body : scene.bodies) {
+        if (body.name == name) {
+            return &body;
+        }
+    }
+    return nullptr;
+}
+
+Transform initial_transform(const SceneBody& body) {
+    return {body.position, rotation_of(body.angle)};
+}
+
+// The gap h0 between a falling body and the static ground below it at t = 0:
+// the smallest separation from any static body, as the loader measured it.
+std::optional<double> gap_to_static_ground(const Scene& scene, const SceneBody& falling) {
+    std::optional<double> gap;
+    for (const SceneBody& ground : scene.bodies) {
+        if (ground.is_static) {
+            const double g = separation(falling.shape, initial_transform(falling), ground.shape,
+                                        initial_transform(ground));
+            gap = gap ? std::min(*gap, g) : g;
+        }
+    }
+    return gap;
+}
+
+// g of gravity (0, -g).
+double gravity_magnitude(const Scene& scene) {
+    return -scene.gravity.y;
+}
+
+// ---------------------------------------------------------------- drop
+
+// PHYSICS.md, drop: released at rest a gap h0 above the ground, first impact
+// at t1 = sqrt(2 h0 / g) with speed v1 = g t1 = sqrt(2 g h0); each bounce
+// leaves at e times the speed it came in with, so impact n + 1 comes a flight
+// of 2 e^n v1 / g after impact n, and rises to e^(2n) h0.
+struct DropLadder {
+    double h0 = 0.0;
+    double g = 0.0;
+    double e = 0.0;
+
+    double v1() const { return std::sqrt(2.0 * g * h0); }
+    double t1() const { return v1() / g; }
+    // e^n by multiplication, as the bounces compound it.
+    double e_to(int n) const {
+        double out = 1.0;
+        for (int k = 0; k < n; ++k) {
+            out *= e;
+        }
+        return out;
+    }
+    // t_n = t1 + sum_{k=1..n-1} 2 e^k v1 / g, n = 1, 2, ...
+    double impact_time(int n) const {
+        double t = t1();
+        for (int k = 1; k < n; ++k) {
+            t += 2.0 * e_to(k) * v1() / g;
+        }
+        return t;
+    }
+    double rebound_speed(int n) const { return e_to(n) * v1(); }
+    double apex_gap(int n) const { return e_to(2 * n) * h0; }
+};
+
+void check_drop(const Scene& scene, const Trajectory& trajectory, Checks& checks) {
+    const Expectation& x = checks.expectation();
+    const SceneBody* body = scene_body(scene, x.body);
+    const std::optional<double> h0 = body ? gap_to_static_ground(scene, *body) : std::nullopt;
+    if (!h0) {
+        checks.failure("", "the scene has no body " + quoted(x.body) +
+                               " above static ground, so the drop formula has no gap h0");
+        return;
+    }
+    const DropLadder drop{*h0, gravity_magnitude(scene), scene.restitution};
+    const std::vector<std::size_t> impacts = events_of(trajectory, x.body);
+    const int seen = static_cast<int>(std::min<std::size_t>(impacts.size(), 1u << 30));
+    for (int n = 1; n <= std::min(x.impacts, seen); ++n) {
+        const TrajectoryEvent& ev = trajectory.events[impacts[static_cast<std::size_t>(n - 1)]];
+        const std::string impact = "impact " + std::to_string(n) + " ";
+        checks.value(impact + "time", plain(drop.impact_time(n)), ev.t);
+        checks.value(impact + "rebound speed", plain(drop.rebound_speed(n)), ev.vn_after);
+        // The rebound speed's apex: a body leaving at speed v rises v^2 / (2 g).
+        checks.value(impact + "apex gap", plain(drop.apex_gap(n)),
+                     ev.vn_after * ev.vn_after / (2.0 * drop.g));
+    }
+    if (seen < x.impacts) {
+        checks.failure("impacts",
+                       "the run has " + std::to_string(seen) + " collision" +
+                           (seen == 1 ? "" : "s") + " of " + quoted(x.body) + ", fewer than the " +
+                           std::to_string(x.impacts) + " impacts expected",
+                       x.impacts, seen);
+    }
+}
+
+// ---------------------------------------------------------------- corner impact
+
+// PHYSICS.md, single-corner impact on static ground (n = (0, 1)), for a body
+// not spinning: the lowest corner falls the gap h, meets the ground at speed v,
+// and the impulse j = (1 + e) v / (1/M + rx^2 / I) at horizontal offset rx sets
+// vy' = -v + j / M and w' = rx j / I; vx is untouched.
+struct CornerImpact {
+    double t_hit = 0.0;
+    double v = 0.0;       // speed at impact
+    double rx = 0.0;      // corner's horizontal offset from the centre of mass
+    double point_x = 0.0; // where the corner touches
+    double point_scale = 0.0;
+    double j = 0.0;
+    double vy_after = 0.0;
+    double w_after = 0.0;
+};
+
+// The smallest t > 0 with h + vy0 t - g t^2 / 2 = 0. Of the two forms of the
+// root the one without cancellation is used: 2 h / (s - vy0) when falling
+// (it also covers g = 0, t = h / -vy0), (vy0 + s) / g when thrown up.
+double time_to_fall(double h, double vy0, double g, double s) {
+    return vy0 < 0.0 ? 2.0 * h / (s - vy0) : (vy0 + s) / g;
+}
+
+CornerImpact corner_impact(const Scene& scene, const SceneBody& body, double h) {
+    const Rotation q = rotation_of(body.angle);
+    const Polygon& polygon = body.shape.polygon;
+    Vec2 lowest = rotate(q, polygon.vertices[0]);
+    for (int i = 1; i < polygon.count; ++i) {
+        const Vec2 v = rotate(q, polygon.vertices[static_cast<std::size_t>(i)]);
+        if (v.y < lowest.y) {
+            lowest = v;
+        }
+    }
+    const double g = gravity_magnitude(scene);
+    const double e = scene.restitution;
+    const double vy0 = body.velocity.y;
+    CornerImpact c;
+    // Falling h from vy0: v^2 = vy0^2 + 2 g h.
+    c.v = std::sqrt(vy0 * vy0 + 2.0 * g * h);
+    c.t_hit = time_to_fall(h, vy0, g, c.v);
+    c.rx = lowest.x;
+    const double drift = body.velocity.x * c.t_hit;
+    c.point_x = body.position.x + drift + c.rx;
+    c.point_scale = std::abs(body.position.x) + std::abs(drift) + std::abs(c.rx);
+    c.j = (1.0 + e) * c.v / (1.0 / body.mass + c.rx * c.rx / body.inertia);
+    c.vy_after = -c.v + c.j / body.mass;
+    c.w_after = c.rx * c.j / body.inertia;
+    return c;
+}
+
+void check_corner_impact(const Scene& scene, const Trajectory& trajectory, Checks& checks) {
+    const Expectation& x = checks.expectation();
+    const SceneBody* body = scene_body(scene, x.body);
+    const std::optional<double> h = body ? gap_to_static_ground(scene, *body) : std::nullopt;
+    if (!h || body->shape.type != ShapeType::polygon || !(body->inertia > 0.0)) {
+        checks.failure("", "the scene has no rotating polygon " + quoted(x.body) +
+                               " above static ground, so the corner-impact formula does not apply");
+        return;
+    }
+    const CornerImpact c = corner_impact(scene, *body, *h);
+    const std::vector<std::size_t> hits = events_of(trajectory, x.body);
+    if (hits.empty()) {
+        checks.failure(
+            "", "the run has no collision of " + quoted(x.body) +
+                    "; the exact answer has it hit the ground at t = " + number(c.t_hit) + " s");
+        return;
+    }
+    const TrajectoryEvent& hit = trajectory.events[hits.front()];
+    checks.value("time", plain(c.t_hit), hit.t);
+    checks.value("impulse", plain(c.j), hit.impulse);
+    checks.value("vn_before", plain(-c.v), hit.vn_before);
+    checks.value("point.x", {c.point_x, c.point_scale}, hit.point[0]);
+
+    const std::optional<BodyColumns> columns = body_columns(trajectory, x.body);
+    const std::vector<double>* frame = frame_after_event(trajectory, hits.front(), {x.body});
+    if (!columns || !frame) {
+        return; // nothing shows the state this impact alone left
+    }
+    const Motion after = motion_in(*frame, *columns);
+    const double flight = frame_time(*frame) - c.t_hit;
+    const double g = gravity_magnitude(scene);
+    // rx is a difference of world positions in the engine, so w' inherits
+    // their rounding: its scale is the point's.
+    checks.value("omega after", {c.w_after, c.point_scale * c.j / body->inertia}, after.omega);
+    checks.value("vx after", plain(body->velocity.x), after.velocity.x);
+    // After the impact only gravity acts: vy = vy' - g (t - t_hit).
+    checks.value("vy after",
+                 {c.vy_after - g * flight, c.v + c.j / body->mass + std::abs(g * flight)},
+                 after.velocity.y);
+}
+
+// ---------------------------------------------------------------- head-on
+
+// PHYSICS.md, head-on (1D, no rotation): along the unit vector u from A's
+// centre to B's, momentum is exact and restitution sets the closing speed:
+//   vA' = (MA vA + MB vB - MB e (vA - vB)) / (MA + MB)
+//   vB' = (MA vA + MB vB + MA e (vA - vB)) / (MA + MB)
+//   j   = MA MB (1 + e) (vA - vB) / (MA + MB)
+// The components across u are untouched: the impulse acts along u only.
+struct HeadOn {
+    Vec2 u;
+    double va = 0.0, vb = 0.0; // along u, before
+    double pa = 0.0, pb = 0.0; // across u, before and after
+    Exact va_after, vb_after, j;
+};
+
+HeadOn head_on(const Scene& scene, const SceneBody& a, const SceneBody& b) {
+    HeadOn h;
+    const Vec2 line = b.position - a.position;
+    h.u = (1.0 / length(line)) * line;
+    h.va = dot(a.velocity, h.u);
+    h.vb = dot(b.velocity, h.u);
+    h.pa = dot(a.velocity, perp(h.u));
+    h.pb = dot(b.velocity, perp(h.u));
+    const double ma = a.mass, mb = b.mass, e = scene.restitution;
+    const double closing = h.va - h.vb;
+    const double total = ma + mb;
+    const double momentum = ma * std::abs(h.va) + mb * std::abs(h.vb);
+    h.va_after = {(ma * h.va + mb * h.vb - mb * e * closing) / total,
+                  (momentum + mb * e * std::abs(closing)) / total};
+    h.vb_after = {(ma * h.va + mb * h.vb + ma * e * closing) / total,
+                  (momentum + ma * e * std::abs(closing)) / total};
+    h.j = plain(ma * mb * (1.0 + e) * closing / total);
+    return h;
+}
+
+void check_head_on(const Scene& scene, const Trajectory& trajectory, Checks& checks) {
+    const Expectation& x = checks.expectation();
+    const SceneBody* a = scene_body(scene, x.body);
+    const SceneBody* b = scene_body(scene, x.other);
+    if (!a || !b || a == b || !(a->mass > 0.0) || !(b->mass > 0.0)) {
+        checks.failure("", "the scene has no two dynamic bodies " + quoted(x.body) + " and " +
+                               quoted(x.other) + ", so the head-on formula does not apply");
+        return;
+    }
+    const HeadOn h = head_on(scene, *a, *b);
+    std::optional<std::size_t> first;
+    for (std::size_t i = 0; i < trajectory.events.size() && !first; ++i) {
+        const TrajectoryEvent& e = trajectory.events[i];
+        if ((e.a == a->name && e.b == b->name) || (e.a == b->name && e.b == a->name)) {
+            first = i;
+        }
+    }
+    if (!first) {
+        checks.failure("", "the run has no collision between " + quoted(a->name) + " and " +
+                               quoted(b->name));
+        return;
+    }
+    checks.value("impulse", h.j, trajectory.events[*first].impulse);
+
+    const std::optional<BodyColumns> ca = body_columns(trajectory, a->name);
+    const std::optional<BodyColumns> cb = body_columns(trajectory, b->name);
+    const std::vector<double>* frame = frame_after_event(trajectory, *first, {a->name, b->name});
+    if (!ca || !cb || !frame) {
+        return; // nothing shows the state this collision alone left
+    }
+    const Vec2 va = motion_in(*frame, *ca).velocity;
+    const Vec2 vb = motion_in(*frame, *cb).velocity;
+    const Vec2 across = perp(h.u);
+    // A velocity read along u carries the rounding of its component across u,
+    // and the other way round; the impulse's j / M is what rounding of the
+    // normal leaks across.
+    checks.value(quoted(a->name) + " velocity along the line of centres",
+                 {h.va_after.value, h.va_after.scale + std::abs(h.pa)}, dot(va, h.u));
+    checks.value(quoted(b->name) + " velocity along the line of centres",
+                 {h.vb_after.value, h.vb_after.scale + std::abs(h.pb)}, dot(vb, h.u));
+    checks.value(quoted(a->name) + " velocity across the line of centres",
+                 {h.pa, std::abs(h.pa) + h.va_after.scale + h.j.value / a->mass}, dot(va, across));
+    checks.value(quoted(b->name) + " velocity across the line of centres",
+                 {h.pb, std::abs(h.pb) + h.vb_after.scale + h.j.value / b->mass}, dot(vb, across));
+}
+
+// ---------------------------------------------------------------- totals
+
+// A dynamic body as the totals need it: mass, inertia (0 when it does not
+// rotate: its spin stays 0 and carries nothing) and where its columns are.
+struct Mass {
+    const SceneBody* body = nullptr;
+    BodyColumns columns;
+    double inertia = 0.0;
+};
+
+// Momentum, angular momentum about the origin and energy of every dynamic body
+// in one frame, each with the sum of its terms' magnitudes: conserved totals
+// may be zero (two equal bodies meeting), so the relative tolerance is taken
+// of the terms, the size of the numbers the simulation rounds.
+struct Totals {
+    Vec2 momentum;
+    double angular_momentum = 0.0;
+    double energy = 0.0;
+    double momentum_scale = 0.0;
+    double angular_momentum_scale = 0.0;
+    double energy_scale = 0.0;
+};
+
+// P = sum m v; L = sum (m x cross v + I w); E = sum (m v^2 / 2 + I w^2 / 2 - m g . x).
+Totals totals_in(const std::vector<double>& frame, const std::vector<Mass>& masses, Vec2 gravity) {
+    Totals t;
+    for (const Mass& m : masses) {
+        const Motion s = motion_in(frame, m.columns);
+        const double mass = m.body->mass;
+        t.momentum += mass * s.velocity;
+        t.momentum_scale += mass * length(s.velocity);
+        const double orbital = mass * cross(s.position, s.velocity);
+        const double spin = m.inertia * s.omega;
+        t.angular_momentum += orbital + spin;
+        t.angular_momentum_scale += std::abs(orbital) + std::abs(spin);
+        const double kinetic =
+            0.5 * mass * length_squared(s.velocity) + 0.5 * m.inertia * s.omega * s.omega;
+        const double potential = -mass * dot(gravity, s.position);
+        t.energy += kinetic + potential;
+        t.energy_scale += kinetic + std::abs(potential);
+    }
+    return t;
+}
+
+// Every dynamic body with its columns; empty (after a failure) when the
+// trajectory lacks a body's columns.
+std::optional<std::vector<Mass>> masses_of(const Scene& scene, const Trajectory& trajectory,
+                                           Checks& checks) {
+    std::vector<Mass> masses;
+    for (const SceneBody& body : scene.bodies) {
+        if (body.is_static) {
+            continue;
+        }
+        const std::optional<BodyColumns> columns = body_columns(trajectory, body.name);
+        if (!columns) {
+            checks.failure("", "the trajectory has no columns for " + quoted(body.name));
+            return std::nullopt;
+        }
+        masses.push_back({&body, *columns, body.rotation ? body.inertia : 0.0});
+    }
+    if (trajectory.frames.empty()) {
+        checks.failure("", "the trajectory has no frames");
+        return std::nullopt;
+    }
+    return masses;
+}
+
+// A conserved quantity as scalar components (momentum has two) and the scale
+// of its terms.
+std::vector<double> components_of(const Totals& t, const std::string& quantity) {
+    if (quantity == "momentum") {
+        return {t.momentum.x, t.momentum.y};
+    }
+    return {quantity == "angular_momentum" ? t.angular_momentum : t.energy};
+}
+
+double scale_of(const Totals& t, const std::string& quantity) {
+    if (quantity == "momentum") {
+        return t.momentum_scale;
+    }
+    return quantity == "angular_momentum" ? t.angular_momentum_scale : t.energy_scale;
+}
+
+// PHYSICS.md: frictionless contact in free space conserves momentum and
+// angular momentum; with e = 1, energy. Every frame is compared with frame 0
+// and the frame where the quantity strays furthest is reported.
+void check_conserved(const Scene& scene, const Trajectory& trajectory, Checks& checks) {
+    const std::optional<std::vector<Mass>> masses = masses_of(scene, trajectory, checks);
+    if (!masses) {
+        return;
+    }
+    std::vector<Totals> totals;
+    totals.reserve(trajectory.frames.size());
+    for (const std::vector<double>& frame : trajectory.frames) {
+        totals.push_back(totals_in(frame, *masses, scene.gravity));
+    }
+    for (const std::string& quantity : checks.expectation().quantities) {
+        const std::vector<double> initial = components_of(totals.front(), quantity);
+        std::size_t worst_frame = 0;
+        std::size_t worst_component = 0;
+        double largest = 0.0;
+        for (std::size_t k = 0; k < totals.size(); ++k) {
+            const std::vector<double> now = components_of(totals[k], quantity);
+            for (std::size_t c = 0; c < now.size(); ++c) {
+                const double off = std::abs(now[c] - initial[c]);
+                // NaN is the worst of all: it is what a blown-up run leaves.
+                if (off > largest || (std::isnan(off) && !std::isnan(largest))) {
+                    largest = off;
+                    worst_frame = k;
+                    worst_component = c;
+                }
+            }
+        }
+        std::string name = quantity == "angular_momentum" ? "angular momentum" : quantity;
+        if (initial.size() == 2) {
+            name += worst_component == 0 ? " (x)" : " (y)";
+        }
+        const double t = frame_time(trajectory.frames[worst_frame]);
+        checks.value("conserved " + name + ", furthest from t = 0 at t = " + number(t) + " s",
+                     {initial[worst_component], scale_of(totals.front(), quantity)},
+                     components_of(totals[worst_frame], quantity)[worst_component]);
+    }
+}
+
+// PHYSICS.md: "with e < 1 energy never increases". One result: the largest
+// rise from one frame to the next, judged against the energy's scale at t = 0.
+void check_energy_non_increasing(const Scene& scene, const Trajectory& trajectory, Checks& checks) {
+    const std::optional<std::vector<Mass>> masses = masses_of(scene, trajectory, checks);
+    if (!masses) {
+        return;
+    }
+    const Totals initial = totals_in(trajectory.frames.front(), *masses, scene.gravity);
+    std::size_t worst = 0;
+    double before = initial.energy;
+    double after = initial.energy;
+    double largest_rise = -std::numeric_limits<double>::infinity();
+    double previous = initial.energy;
+    for (std::size_t k = 1; k < trajectory.frames.size(); ++k) {
+        const double energy = totals_in(trajectory.frames[k], *masses, scene.gravity).energy;
+        const double rise = energy - previous;
+        if (rise > largest_rise || std::isnan(rise)) {
+            largest_rise = std::isnan(rise) ? std::numeric_limits<double>::infinity() : rise;
+            worst = k;
+            before = previous;
+            after = energy;
+        }
+        previous = energy;
+    }
+    const double t = frame_time(trajectory.frames[worst]);
+    // E(k) <= E(k-1) + atol + rtol * scale: one-sided, a fall is always fine.
+    const Expectation& x = checks.expectation();
+    const double allowed = x.atol + x.rtol * initial.energy_scale;
+    checks.judged("energy non-increasing, largest rise at t = " + number(t) + " s",
+                  after <= before + allowed, before, after,
+                  "the energy rose by " + number(after - before) +
+                      " J in the step to t = " + number(t) + " s, more than the " +
+                      number(allowed) + " allowed (atol " + number(x.atol) + " + rtol " +
+                      number(x.rtol) + " x " + number(initial.energy_scale) + ")");
+}
+
+// ---------------------------------------------------------------- literal values
+
+void check_event(const Trajectory& trajectory, Checks& checks) {
+    const Expectation& x = checks.expectation();
+    const std::size_t count = trajectory.events.size();
+    if (x.index >= count) {
+        checks.failure("",
+                       "the run has " + std::to_string(count) + " collision event" +
+                           (count == 1 ? "" : "s") + ", so there is no event " +
+                           std::to_string(x.index),
+                       static_cast<double>(x.index + 1), static_cast<double>(count));
+        return;
+    }
+    const TrajectoryEvent& e = trajectory.events[x.index];
+    if (!x.body.empty()) {
+        checks.name("a", x.body, e.a);
+    }
+    if (!x.other.empty()) {
+        checks.name("b", x.other, e.b);
+    }
+    for (const auto& [field, value] : x.values) {
+        checks.value(field, plain(value), field_of(e, field));
+    }
+}
+
+// Frames are k dt apart; the spacing of the first two is the run's dt even
+// when a command-line override changed the scene's.
+double frame_spacing(const Scene& scene, const Trajectory& trajectory) {
+    if (trajectory.frames.size() >= 2) {
+        return frame_time(trajectory.frames[1]) - frame_time(trajectory.frames[0]);
+    }
+    return scene.dt;
+}
+
+void check_state(const Scene& scene, const Trajectory& trajectory, Checks& checks) {
+    const Expectation& x = checks.expectation();
+    const double dt = frame_spacing(scene, trajectory);
+    const auto frame = std::find_if(
+        trajectory.frames.begin(), trajectory.frames.end(),
+        [&](const std::vector<double>& f) { return std::abs(frame_time(f) - x.t) <= 1e-9 * dt; });
+    const std::optional<BodyColumns> columns = body_columns(trajectory, x.body);
+    if (!columns) {
+        checks.failure("", "the trajectory has no columns for " + quoted(x.body));
+        return;
+    }
+    if (frame == trajectory.frames.end()) {
+        const double end = trajectory.frames.empty() ? 0.0 : frame_time(trajectory.frames.back());
+        checks.failure("", "the run has no frame at t = " + number(x.t) + " s (its frames are " +
+                               number(dt) + " s apart and end at " + number(end) + " s)");
+        return;
+    }
+    const Motion m = motion_in(*frame, *columns);
+    for (const auto& [field, value] : x.values) {
+        checks.value(field, plain(value), field_of(m, field));
+    }
+}
+
+// ---------------------------------------------------------------- dispatch
+
+// The first words of every line an expectation reports.
+std::string subject_of(const Expectation& x) {
+    switch (x.kind) {
+    case Expectation::Kind::drop:
+        return "drop of " + quoted(x.body);
+    case Expectation::Kind::corner_impact:
+        return "corner impact of " + quoted(x.body);
+    case Expectation::Kind::head_on:
+        return "head-on of " + quoted(x.body) + " and " + quoted(x.other);
+    case Expectation::Kind::conserved:
+    case Expectation::Kind::energy_non_increasing:
+        return "";
+    case Expectation::Kind::event:
+        return "event " + std::to_string(x.index);
+    case Expectation::Kind::state:
+        return "state of " + quoted(x.body) + " at t = " + number(x.t) + " s";
+    }
+    return "";
+}
+
+} // namespace
+
+std::vector<ExpectationResult> evaluate_expectations(const Scene& scene,
+                                                     const Trajectory& trajectory) {
+    std::vector<ExpectationResult> results;
+    for (const Expectation& x : scene.expectations) {
+        Checks checks(x, subject_of(x), results);
+        switch (x.kind) {
+        case Expectation::Kind::drop:
+            check_drop(scene, trajectory, checks);
+            break;
+        case Expectation::Kind::corner_impact:
+            check_corner_impact(scene, trajectory, checks);
+            break;
+        case Expectation::Kind::head_on:
+            check_head_on(scene, trajectory, checks);
+            break;
+        case Expectation::Kind::conserved:
+            check_conserved(scene, trajectory, checks);
+            break;
+        case Expectation::Kind::energy_non_increasing:
+            check_energy_non_increasing(scene, trajectory, checks);
+            break;
+        case Expectation::Kind::event:
+            check_event(trajectory, checks);
+            break;
+        case Expectation::Kind::state:
+            check_state(scene, trajectory, checks);
+            break;
+        }
+    }
+    return results;
+}
+
+} // namespace impulse::harness

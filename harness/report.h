@@ -1,0 +1,40 @@
+// The gate's reports: a summary fit for a pull-request comment and an HTML
+// page per run, written to `check --report DIR`; and JUnit XML for CI.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "compare.h"
+#include "expectations.h"
+#include "scene.h"
+#include "trajectory.h"
+
+namespace impulse::harness {
+
+// The outcome of checking one scene.
+struct SceneCheck {
+    enum class Status { passed, failed, error };
+    std::string name;       // scene name (or file when it did not load)
+    std::string scene_file;
+    std::string golden_file;
+    Status status = Status::passed;
+    bool stale = false;     // the golden's scene_sha256 differs from the scene's
+    std::string message;    // one sentence for failed / error
+    std::string details;    // multi-line text: divergences, failed expectations
+    std::optional<Comparison> comparison;
+    std::vector<ExpectationResult> expectations;
+    std::optional<Scene> scene;
+    std::optional<Trajectory> gold;
+    std::optional<Trajectory> value;
+    double seconds = 0.0;   // wall time of this scene's check
+};
+
+std::string junit_xml(const std::vector<SceneCheck>& checks);
+std::string summary_markdown(const std::vector<SceneCheck>& checks);
+// Writes summary.md, index.html and one SVG per failed scene into dir
+// (created if missing); throws InputError when it cannot.
+void write_report(const std::string& dir, const std::vector<SceneCheck>& checks);
+
+} // namespace impulse::harness
