@@ -2,6 +2,17 @@
 
 namespace impulse {
 
+TimeOfImpact time_of_impact(World& world, const Configuration& start, double h,
+                            const Configuration& at_h, int pair_at_h, Configuration& at_impact) {
+    switch (world.solver.toi) {
+    case TimeOfImpactMethod::bisection:
+        return bisect_time_of_impact(world, start, h, pair_at_h, at_impact);
+    case TimeOfImpactMethod::secant:
+        return secant_time_of_impact(world, start, h, at_h, pair_at_h, at_impact);
+    }
+    return bisect_time_of_impact(world, start, h, pair_at_h, at_impact);
+}
+
 TimeOfImpact bisect_time_of_impact(World& world, const Configuration& start, double h,
                                    int pair_at_h, Configuration& at_impact) {
     const SolverSettings& solver = world.solver;
@@ -20,10 +31,10 @@ TimeOfImpact bisect_time_of_impact(World& world, const Configuration& start, dou
         const double mid = lo + 0.5 * (hi - lo);
         // A bracket that no longer shrinks means the tolerance is below the
         // spacing of doubles at this time: stop rather than loop forever.
-        if (toi.halvings == solver.max_halvings || mid <= lo || mid >= hi) {
+        if (toi.iterations == solver.max_halvings || mid <= lo || mid >= hi) {
             break;
         }
-        ++toi.halvings;
+        ++toi.iterations;
         ++world.work.toi_iterations;
         // The seed throws the trial away and integrates again from the last good state.
         advance_all(world, start, mid, trial);

@@ -1,5 +1,7 @@
-// When does the first collision in a step happen? The seed's answer: a binary
-// search of the step (PHYSICS.md, "The simulation loop of the seed", item 2).
+// When does the first collision in a step happen? The seed's answer is a binary
+// search of the step (PHYSICS.md, "The simulation loop of the seed", item 2);
+// the secant search finds the same instant in fewer iterations. Each method is
+// one function here and one case in time_of_impact().
 #pragma once
 
 #include "configuration.h"
@@ -9,15 +11,29 @@ namespace impulse {
 struct TimeOfImpact {
     double time = 0.0; // seconds after the start: the latest instant known free of interpenetration
     int pair = -1;     // index into world.pairs of the pair interpenetrating just after it
-    int halvings = 0;
+    int iterations = 0; // trial configurations integrated (halvings, for the bisection)
     bool converged = false;
 };
 
-// Searches [0, h] after `start`, given that pair `pair_at_h` interpenetrates at
-// h. Converged means the bracket is at most solver.toi_tolerance wide and the
-// pair is within solver.contact_tolerance of touching; the configuration at
-// the returned time is left in at_impact.
+// Every method searches [0, h] after `start`, given that pair `pair_at_h`
+// interpenetrates in `at_h`, the configuration at h. It keeps a bracket
+// [lo, hi]: nothing interpenetrates at lo, the offending pair does at hi.
+// Converged means the bracket is at most solver.toi_tolerance wide and the
+// pair is within solver.contact_tolerance of touching at lo; the configuration
+// at the returned time lo is left in at_impact. At most solver.max_halvings
+// iterations, each counted in world.work.toi_iterations.
+TimeOfImpact time_of_impact(World& world, const Configuration& start, double h,
+                            const Configuration& at_h, int pair_at_h, Configuration& at_impact);
+
+// The seed: halve the bracket until it converges.
 TimeOfImpact bisect_time_of_impact(World& world, const Configuration& start, double h,
                                    int pair_at_h, Configuration& at_impact);
+
+// Safeguarded regula falsi (Anderson-Bjorck, an Illinois variant) on the
+// offending pair's signed separation s(t), halving when the chord would not
+// shrink the bracket (toi_secant.cpp).
+TimeOfImpact secant_time_of_impact(World& world, const Configuration& start, double h,
+                                   const Configuration& at_h, int pair_at_h,
+                                   Configuration& at_impact);
 
 } // namespace impulse

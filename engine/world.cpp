@@ -78,7 +78,7 @@ std::optional<StepError> step(World& world, double t0, double dt,
         }
 
         // 2. Something interpenetrates: search back for the time of collision.
-        const TimeOfImpact toi = bisect_time_of_impact(world, start, h, pair_at_h, at_impact);
+        const TimeOfImpact toi = time_of_impact(world, start, h, trial, pair_at_h, at_impact);
         const Pair pair = world.pairs[toi.pair];
         commit(world, at_impact);
         elapsed += toi.time;

@@ -8,9 +8,8 @@
 // loader (scene.cpp) has already refused scenes that break their preconditions.
 #include "expectations.h"
 
-#include "manifold.h"
+#include "exact_answers.h"
 #include "number_format.h"
-#include "rotation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -46,21 +45,6 @@ std::string quoted(const std::string& name) {
 }
 
 // ---------------------------------------------------------------- judging one value
-
-// An exact answer and the size of the terms it is made of. The relative
-// tolerance applies to the scale, not to the value: a post-impact velocity that
-// cancels to zero (equal masses, e = 1) comes out of the simulation as a
-// difference of numbers of the size of the terms, rounded, and holding it to
-// an absolute zero would fail every correct engine.
-struct Exact {
-    double value = 0.0;
-    double scale = 0.0;
-};
-
-// A value whose terms do not cancel: its own size is the scale.
-Exact plain(double value) {
-    return {value, std::abs(value)};
-}
 
 // The checks of one expectation, with the prefix every line of it shares.
 class Checks {
@@ -139,55 +123,6 @@ class Checks {
 
 // ---------------------------------------------------------------- reading the trajectory
 
-// Where one body's six values sit in a frame (DESIGN.md, trajectory format).
-struct BodyColumns {
-    std::size_t x = 0, y = 0, angle = 0, vx = 0, vy = 0, omega = 0;
-};
-
-std::optional<std::size_t> column_index(const Trajectory& trajectory, const std::string& name) {
-    const auto it = std::find(trajectory.columns.begin(), trajectory.columns.end(), name);
-    if (it == trajectory.columns.end()) {
-        return std::nullopt;
-    }
-    return static_cast<std::size_t>(it - trajectory.columns.begin());
-}
-
-std::optional<BodyColumns> body_columns(const Trajectory& trajectory, const std::string& body) {
-    std::size_t found[6] = {};
-    const char* suffixes[6] = {".x", ".y", ".angle", ".vx", ".vy", ".omega"};
-    for (std::size_t i = 0; i < 6; ++i) {
-        const std::optional<std::size_t> index = column_index(trajectory, body + suffixes[i]);
-        if (!index) {
-            return std::nullopt;
-        }
-        found[i] = *index;
-    }
-    return BodyColumns{found[0], found[1], found[2], found[3], found[4], found[5]};
-}
-
-// A short frame (a broken trajectory) reads as NaN, which fails every check.
-double at(const std::vector<double>& frame, std::size_t column) {
-    return column < frame.size() ? frame[column] : not_a_number;
-}
-
-double frame_time(const std::vector<double>& frame) {
-    return at(frame, 0);
-}
-
-struct Motion {
-    Vec2 position;
-    double angle = 0.0;
-    Vec2 velocity;
-    double omega = 0.0;
-};
-
-Motion motion_in(const std::vector<double>& frame, const BodyColumns& c) {
-    return {{at(frame, c.x), at(frame, c.y)},
-            at(frame, c.angle),
-            {at(frame, c.vx), at(frame, c.vy)},
-            at(frame, c.omega)};
-}
-
 double field_of(const Motion& m, const std::string& field) {
     if (field == "x") {
         return m.position.x;
@@ -229,21 +164,6 @@ double field_of(const TrajectoryEvent& e, const std::string& field) {
     return not_a_number;
 }
 
-bool involves(const TrajectoryEvent& e, const std::string& body) {
-    return e.a == body || e.b == body;
-}
-
-// The indices of the events that involve `body`, in order.
-std::vector<std::size_t> events_of(const Trajectory& trajectory, const std::string& body) {
-    std::vector<std::size_t> out;
-    for (std::size_t i = 0; i < trajectory.events.size(); ++i) {
-        if (involves(trajectory.events[i], body)) {
-            out.push_back(i);
-        }
-    }
-    return out;
-}
-
 // The first frame recorded after event `index`, when no later event touching
 // any of `bodies` happens up to it: only then does the frame show the state
 // this collision left (plus the free motion since). Empty otherwise.
@@ -279,61 +199,7 @@ const SceneBody* scene_body(const Scene& scene, const std::string& name) {
     return nullptr;
 }
 
-Transform initial_transform(const SceneBody& body) {
-    return {body.position, rotation_of(body.angle)};
-}
-
-// The gap h0 between a falling body and the static ground below it at t = 0:
-// the smallest separation from any static body, as the loader measured it.
-std::optional<double> gap_to_static_ground(const Scene& scene, const SceneBody& falling) {
-    std::optional<double> gap;
-    for (const SceneBody& ground : scene.bodies) {
-        if (ground.is_static) {
-            const double g = separation(falling.shape, initial_transform(falling), ground.shape,
-                                        initial_transform(ground));
-            gap = gap ? std::min(*gap, g) : g;
-        }
-    }
-    return gap;
-}
-
-// g of gravity (0, -g).
-double gravity_magnitude(const Scene& scene) {
-    return -scene.gravity.y;
-}
-
 // ---------------------------------------------------------------- drop
-
-// PHYSICS.md, drop: released at rest a gap h0 above the ground, first impact
-// at t1 = sqrt(2 h0 / g) with speed v1 = g t1 = sqrt(2 g h0); each bounce
-// leaves at e times the speed it came in with, so impact n + 1 comes a flight
-// of 2 e^n v1 / g after impact n, and rises to e^(2n) h0.
-struct DropLadder {
-    double h0 = 0.0;
-    double g = 0.0;
-    double e = 0.0;
-
-    double v1() const { return std::sqrt(2.0 * g * h0); }
-    double t1() const { return v1() / g; }
-    // e^n by multiplication, as the bounces compound it.
-    double e_to(int n) const {
-        double out = 1.0;
-        for (int k = 0; k < n; ++k) {
-            out *= e;
-        }
-        return out;
-    }
-    // t_n = t1 + sum_{k=1..n-1} 2 e^k v1 / g, n = 1, 2, ...
-    double impact_time(int n) const {
-        double t = t1();
-        for (int k = 1; k < n; ++k) {
-            t += 2.0 * e_to(k) * v1() / g;
-        }
-        return t;
-    }
-    double rebound_speed(int n) const { return e_to(n) * v1(); }
-    double apex_gap(int n) const { return e_to(2 * n) * h0; }
-};
 
 void check_drop(const Scene& scene, const Trajectory& trajectory, Checks& checks) {
     const Expectation& x = checks.expectation();
@@ -366,55 +232,6 @@ void check_drop(const Scene& scene, const Trajectory& trajectory, Checks& checks
 }
 
 // ---------------------------------------------------------------- corner impact
-
-// PHYSICS.md, single-corner impact on static ground (n = (0, 1)), for a body
-// not spinning: the lowest corner falls the gap h, meets the ground at speed v,
-// and the impulse j = (1 + e) v / (1/M + rx^2 / I) at horizontal offset rx sets
-// vy' = -v + j / M and w' = rx j / I; vx is untouched.
-struct CornerImpact {
-    double t_hit = 0.0;
-    double v = 0.0;       // speed at impact
-    double rx = 0.0;      // corner's horizontal offset from the centre of mass
-    double point_x = 0.0; // where the corner touches
-    double point_scale = 0.0;
-    double j = 0.0;
-    double vy_after = 0.0;
-    double w_after = 0.0;
-};
-
-// The smallest t > 0 with h + vy0 t - g t^2 / 2 = 0. Of the two forms of the
-// root the one without cancellation is used: 2 h / (s - vy0) when falling
-// (it also covers g = 0, t = h / -vy0), (vy0 + s) / g when thrown up.
-double time_to_fall(double h, double vy0, double g, double s) {
-    return vy0 < 0.0 ? 2.0 * h / (s - vy0) : (vy0 + s) / g;
-}
-
-CornerImpact corner_impact(const Scene& scene, const SceneBody& body, double h) {
-    const Rotation q = rotation_of(body.angle);
-    const Polygon& polygon = body.shape.polygon;
-    Vec2 lowest = rotate(q, polygon.vertices[0]);
-    for (int i = 1; i < polygon.count; ++i) {
-        const Vec2 v = rotate(q, polygon.vertices[static_cast<std::size_t>(i)]);
-        if (v.y < lowest.y) {
-            lowest = v;
-        }
-    }
-    const double g = gravity_magnitude(scene);
-    const double e = scene.restitution;
-    const double vy0 = body.velocity.y;
-    CornerImpact c;
-    // Falling h from vy0: v^2 = vy0^2 + 2 g h.
-    c.v = std::sqrt(vy0 * vy0 + 2.0 * g * h);
-    c.t_hit = time_to_fall(h, vy0, g, c.v);
-    c.rx = lowest.x;
-    const double drift = body.velocity.x * c.t_hit;
-    c.point_x = body.position.x + drift + c.rx;
-    c.point_scale = std::abs(body.position.x) + std::abs(drift) + std::abs(c.rx);
-    c.j = (1.0 + e) * c.v / (1.0 / body.mass + c.rx * c.rx / body.inertia);
-    c.vy_after = -c.v + c.j / body.mass;
-    c.w_after = c.rx * c.j / body.inertia;
-    return c;
-}
 
 void check_corner_impact(const Scene& scene, const Trajectory& trajectory, Checks& checks) {
     const Expectation& x = checks.expectation();
@@ -458,39 +275,6 @@ void check_corner_impact(const Scene& scene, const Trajectory& trajectory, Check
 }
 
 // ---------------------------------------------------------------- head-on
-
-// PHYSICS.md, head-on (1D, no rotation): along the unit vector u from A's
-// centre to B's, momentum is exact and restitution sets the closing speed:
-//   vA' = (MA vA + MB vB - MB e (vA - vB)) / (MA + MB)
-//   vB' = (MA vA + MB vB + MA e (vA - vB)) / (MA + MB)
-//   j   = MA MB (1 + e) (vA - vB) / (MA + MB)
-// The components across u are untouched: the impulse acts along u only.
-struct HeadOn {
-    Vec2 u;
-    double va = 0.0, vb = 0.0; // along u, before
-    double pa = 0.0, pb = 0.0; // across u, before and after
-    Exact va_after, vb_after, j;
-};
-
-HeadOn head_on(const Scene& scene, const SceneBody& a, const SceneBody& b) {
-    HeadOn h;
-    const Vec2 line = b.position - a.position;
-    h.u = (1.0 / length(line)) * line;
-    h.va = dot(a.velocity, h.u);
-    h.vb = dot(b.velocity, h.u);
-    h.pa = dot(a.velocity, perp(h.u));
-    h.pb = dot(b.velocity, perp(h.u));
-    const double ma = a.mass, mb = b.mass, e = scene.restitution;
-    const double closing = h.va - h.vb;
-    const double total = ma + mb;
-    const double momentum = ma * std::abs(h.va) + mb * std::abs(h.vb);
-    h.va_after = {(ma * h.va + mb * h.vb - mb * e * closing) / total,
-                  (momentum + mb * e * std::abs(closing)) / total};
-    h.vb_after = {(ma * h.va + mb * h.vb + ma * e * closing) / total,
-                  (momentum + ma * e * std::abs(closing)) / total};
-    h.j = plain(ma * mb * (1.0 + e) * closing / total);
-    return h;
-}
 
 void check_head_on(const Scene& scene, const Trajectory& trajectory, Checks& checks) {
     const Expectation& x = checks.expectation();
@@ -540,63 +324,15 @@ void check_head_on(const Scene& scene, const Trajectory& trajectory, Checks& che
 
 // ---------------------------------------------------------------- totals
 
-// A dynamic body as the totals need it: mass, inertia (0 when it does not
-// rotate: its spin stays 0 and carries nothing) and where its columns are.
-struct Mass {
-    const SceneBody* body = nullptr;
-    BodyColumns columns;
-    double inertia = 0.0;
-};
-
-// Momentum, angular momentum about the origin and energy of every dynamic body
-// in one frame, each with the sum of its terms' magnitudes: conserved totals
-// may be zero (two equal bodies meeting), so the relative tolerance is taken
-// of the terms, the size of the numbers the simulation rounds.
-struct Totals {
-    Vec2 momentum;
-    double angular_momentum = 0.0;
-    double energy = 0.0;
-    double momentum_scale = 0.0;
-    double angular_momentum_scale = 0.0;
-    double energy_scale = 0.0;
-};
-
-// P = sum m v; L = sum (m x cross v + I w); E = sum (m v^2 / 2 + I w^2 / 2 - m g . x).
-Totals totals_in(const std::vector<double>& frame, const std::vector<Mass>& masses, Vec2 gravity) {
-    Totals t;
-    for (const Mass& m : masses) {
-        const Motion s = motion_in(frame, m.columns);
-        const double mass = m.body->mass;
-        t.momentum += mass * s.velocity;
-        t.momentum_scale += mass * length(s.velocity);
-        const double orbital = mass * cross(s.position, s.velocity);
-        const double spin = m.inertia * s.omega;
-        t.angular_momentum += orbital + spin;
-        t.angular_momentum_scale += std::abs(orbital) + std::abs(spin);
-        const double kinetic =
-            0.5 * mass * length_squared(s.velocity) + 0.5 * m.inertia * s.omega * s.omega;
-        const double potential = -mass * dot(gravity, s.position);
-        t.energy += kinetic + potential;
-        t.energy_scale += kinetic + std::abs(potential);
-    }
-    return t;
-}
-
 // Every dynamic body with its columns; empty (after a failure) when the
 // trajectory lacks a body's columns.
 std::optional<std::vector<Mass>> masses_of(const Scene& scene, const Trajectory& trajectory,
                                            Checks& checks) {
-    std::vector<Mass> masses;
-    for (const SceneBody& body : scene.bodies) {
-        if (body.is_static) {
-            continue;
-        }
-        const std::optional<BodyColumns> columns = body_columns(trajectory, body.name);
-        if (!columns) {
-            checks.failure("", "the trajectory has no columns for " + quoted(body.name));
-            return std::nullopt;
-        }
-        masses.push_back({&body, *columns, body.rotation ? body.inertia : 0.0});
+    std::string missing;
+    std::optional<std::vector<Mass>> masses = masses_of(scene, trajectory, missing);
+    if (!masses) {
+        checks.failure("", "the trajectory has no columns for " + quoted(missing));
+        return std::nullopt;
     }
     if (trajectory.frames.empty()) {
         checks.failure("", "the trajectory has no frames");

@@ -86,7 +86,7 @@ class ImpulseSimulator final : public Simulator {
             return "the time-of-impact search between " + a + " and " + b + " at " + at +
                    " did not reach solver.toi_tolerance = " +
                    format_double(scene_.solver.toi_tolerance) + " s within " +
-                   std::to_string(scene_.solver.max_halvings) + " halvings; raise the tolerance";
+                   std::to_string(scene_.solver.max_halvings) + " iterations; raise the tolerance";
         case StepFailure::too_many_collisions:
             return "more than " + std::to_string(scene_.solver.max_collisions_per_step) +
                    " collisions between " + a + " and " + b + " within one step at " + at +

@@ -10,10 +10,12 @@
 
 #include "atomic_file.h"
 #include "body.h"
+#include "exact_answers.h"
 #include "input_error.h"
 #include "manifold.h"
 #include "rotation.h"
 #include "sha256.h"
+#include "strict_json.h"
 
 #include <algorithm>
 #include <cctype>
@@ -41,9 +43,6 @@ using Json = nlohmann::json;
 
 // A scene is a few kilobytes; anything near this is a mistake, not a scene.
 constexpr std::size_t max_file_bytes = std::size_t{16} * 1024 * 1024;
-// nlohmann and every recursive walk of the document recurse per level; a
-// scene needs six (root, bodies, body, shape, polygon, vertex).
-constexpr int max_nesting_depth = 64;
 constexpr std::size_t max_name_length = 64;
 constexpr int min_polygon_vertices = 3;
 // A polygon whose centroid is further than this fraction of its size from the
@@ -62,23 +61,6 @@ std::string number_text(double value) {
 
 bool is_ascii_letter_or_digit(char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
-}
-
-// Keys that are plain identifiers are written `.key`; anything else (spaces,
-// dots, control characters) as `["key"]`, JSON-escaped, so a path is always one
-// unambiguous line.
-std::string member_path(const std::string& parent, const std::string& key) {
-    const bool plain = !key.empty() && std::all_of(key.begin(), key.end(), [](char c) {
-        return is_ascii_letter_or_digit(c) || c == '_';
-    });
-    if (!plain) {
-        return parent + "[" + Json(key).dump() + "]";
-    }
-    return parent.empty() ? key : parent + "." + key;
-}
-
-std::string element_path(const std::string& parent, std::size_t index) {
-    return parent + "[" + std::to_string(index) + "]";
 }
 
 // What a value is, for "must be X, got Y": numbers and short strings verbatim,
@@ -131,185 +113,6 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 
 // ---------------------------------------------------------------- the text before JSON
 
-// A scene committed in the middle of a merge must say so, not "invalid JSON".
-void reject_merge_conflict_markers(const std::string& text, const std::string& file) {
-    std::size_t line = 1;
-    std::size_t start = 0;
-    while (start <= text.size()) {
-        for (const char* marker : {"<<<<<<<", "=======", ">>>>>>>"}) {
-            if (text.compare(start, 7, marker) == 0) {
-                throw InputError(file, "",
-                                 "has a merge-conflict marker at line " + std::to_string(line));
-            }
-        }
-        const std::size_t end = text.find('\n', start);
-        if (end == std::string::npos) {
-            break;
-        }
-        start = end + 1;
-        ++line;
-    }
-}
-
-// Counts brackets outside strings before nlohmann sees the text, so a
-// pathological file ("[[[[...") is refused instead of exhausting the stack.
-void reject_deep_nesting(const std::string& text, const std::string& file) {
-    int depth = 0;
-    bool in_string = false;
-    bool escaped = false;
-    for (const char c : text) {
-        if (in_string) {
-            if (escaped) {
-                escaped = false;
-            } else if (c == '\\') {
-                escaped = true;
-            } else if (c == '"') {
-                in_string = false;
-            }
-        } else if (c == '"') {
-            in_string = true;
-        } else if (c == '[' || c == '{') {
-            if (++depth > max_nesting_depth) {
-                throw InputError(file, "",
-                                 "is nested too deeply: more than " +
-                                     std::to_string(max_nesting_depth) +
-                                     " levels of arrays and objects");
-            }
-        } else if (c == ']' || c == '}') {
-            --depth;
-        }
-    }
-}
-
-// nlohmann's message, e.g. "[json.exception.parse_error.101] parse error at
-// line 1, column 10: syntax error while parsing value - invalid literal; last
-// read: '"a": tru}'", cut to "line 1, column 10: invalid literal while parsing
-// value". The "last read" excerpt is dropped: it repeats raw file bytes, which
-// may be control characters or broken UTF-8.
-std::string shorten_parse_error(std::string message) {
-    const std::size_t tag_end = message.find("] ");
-    if (message.rfind("[json.exception.", 0) == 0 && tag_end != std::string::npos) {
-        message.erase(0, tag_end + 2);
-    }
-    if (message.rfind("parse error at ", 0) == 0) {
-        message.erase(0, std::string("parse error at ").size());
-    }
-    const std::string last_read = "; last read: '";
-    const std::size_t excerpt = message.find(last_read);
-    if (excerpt != std::string::npos) {
-        const std::size_t expected = message.rfind("'; expected ");
-        const std::size_t cut_end =
-            expected != std::string::npos && expected >= excerpt + last_read.size()
-                ? expected + 1
-                : message.size();
-        message.erase(excerpt, cut_end - excerpt);
-    }
-    // "syntax error while parsing X - REASON" reads better as "REASON while parsing X".
-    const std::string syntax = "syntax error while parsing ";
-    const std::size_t where = message.find(syntax);
-    if (where != std::string::npos) {
-        const std::size_t dash = message.find(" - ", where);
-        if (dash != std::string::npos) {
-            const std::size_t reason_end = std::min(message.find("; ", dash), message.size());
-            const std::string what =
-                message.substr(where + syntax.size(), dash - where - syntax.size());
-            const std::string reason = message.substr(dash + 3, reason_end - dash - 3);
-            message.replace(where, reason_end - where, reason + " while parsing " + what);
-        }
-    }
-    for (char& c : message) {
-        const auto byte = static_cast<unsigned char>(c);
-        if (byte < 0x20 || byte >= 0x7f) {
-            c = '?';
-        }
-    }
-    return message;
-}
-
-// Follows the parser's callbacks to know the JSON path of every key, so that a
-// repeated key (which nlohmann would otherwise resolve silently by keeping one
-// value) is reported where it is. Only the first repeat is kept: it is the
-// first in the document.
-class DuplicateKeyFinder {
-  public:
-    bool on_event(nlohmann::json::parse_event_t event, const Json& parsed) {
-        using Event = nlohmann::json::parse_event_t;
-        switch (event) {
-        case Event::object_start:
-            frames_.push_back({path_of_next_value(), true, {}, {}, 0});
-            break;
-        case Event::array_start:
-            frames_.push_back({path_of_next_value(), false, {}, {}, 0});
-            break;
-        case Event::key: {
-            Frame& object = frames_.back();
-            object.key = parsed.get<std::string>();
-            if (!object.keys.insert(object.key).second && !first_duplicate_) {
-                first_duplicate_ = member_path(object.path, object.key);
-            }
-            break;
-        }
-        case Event::object_end:
-        case Event::array_end:
-            frames_.pop_back();
-            value_done();
-            break;
-        case Event::value:
-            value_done();
-            break;
-        }
-        return true;
-    }
-
-    const std::optional<std::string>& first_duplicate() const { return first_duplicate_; }
-
-  private:
-    struct Frame {
-        std::string path;
-        bool is_object;
-        std::set<std::string> keys;
-        std::string key;   // objects: the key whose value comes next
-        std::size_t index; // arrays: the index of the value that comes next
-    };
-
-    std::string path_of_next_value() const {
-        if (frames_.empty()) {
-            return "";
-        }
-        const Frame& parent = frames_.back();
-        return parent.is_object ? member_path(parent.path, parent.key)
-                                : element_path(parent.path, parent.index);
-    }
-
-    void value_done() {
-        if (!frames_.empty() && !frames_.back().is_object) {
-            ++frames_.back().index;
-        }
-    }
-
-    std::vector<Frame> frames_;
-    std::optional<std::string> first_duplicate_;
-};
-
-Json parse_json(const std::string& text, const std::string& file) {
-    DuplicateKeyFinder finder;
-    Json document;
-    try {
-        document =
-            Json::parse(text, [&finder](int, nlohmann::json::parse_event_t event, Json& parsed) {
-                return finder.on_event(event, parsed);
-            });
-    } catch (const nlohmann::json::exception& error) {
-        // parse_error for syntax, out_of_range for a number too large for a double.
-        throw InputError(file, "", "not valid JSON: " + shorten_parse_error(error.what()));
-    }
-    if (finder.first_duplicate()) {
-        throw InputError(file, *finder.first_duplicate(),
-                         "appears more than once in the same object; keys must be unique");
-    }
-    return document;
-}
-
 // ---------------------------------------------------------------- reading values
 
 // A value in the document and the JSON path that leads to it: everything a
@@ -330,13 +133,13 @@ class Node {
     // Callers have checked that this is an object / array.
     bool has(const std::string& key) const { return value_->contains(key); }
     Node member(const std::string& key) const {
-        return Node(value_->at(key), member_path(path_, key), *file_);
+        return Node(value_->at(key), json_member_path(path_, key), *file_);
     }
     Node element(std::size_t index) const {
-        return Node(value_->at(index), element_path(path_, index), *file_);
+        return Node(value_->at(index), json_element_path(path_, index), *file_);
     }
     // The path a missing key would have, for "is required".
-    std::string path_of(const std::string& key) const { return member_path(path_, key); }
+    std::string path_of(const std::string& key) const { return json_member_path(path_, key); }
 
   private:
     const Json* value_;
@@ -565,7 +368,11 @@ void read_solver(const Node& node, SolverSettings& solver) {
         }
     }
     if (const std::optional<Node> toi = optional_member(node, "toi")) {
-        require_only(*toi, "bisection", "the only time-of-impact search in this version");
+        if (!toi->json().is_string() ||
+            !toi_method_from_name(toi->json().get<std::string>(), solver.toi)) {
+            toi->fail("must be \"bisection\" (the seed's) or \"secant\", got " +
+                      describe(toi->json()));
+        }
     }
     solver.toi_tolerance = read_positive_or(node, "toi_tolerance", solver.toi_tolerance);
     solver.contact_tolerance =
@@ -945,10 +752,6 @@ void read_tolerances(const Node& node, Tolerances& tolerances) {
 
 // ---------------------------------------------------------------- expectations
 
-std::string vec2_text(Vec2 v) {
-    return "(" + number_text(v.x) + ", " + number_text(v.y) + ")";
-}
-
 // The index of the body a string value names.
 std::size_t read_body_reference(const Node& node, const Scene& scene) {
     const std::string name = read_string(node);
@@ -973,164 +776,41 @@ std::size_t read_dynamic_body_reference(const Node& node, const Scene& scene,
     return index;
 }
 
-// The drop and the corner impact start from a gap above static ground
-// (PHYSICS.md, "Exact answers"): the smallest separation from any static body.
-// Empty when there is no static body.
-std::optional<double> gap_to_static_ground(const Scene& scene, std::size_t body) {
-    const SceneBody& falling = scene.bodies[body];
-    const Transform xf = transform_of(initial_state(falling));
-    std::optional<double> gap;
-    for (const SceneBody& ground : scene.bodies) {
-        if (!ground.is_static) {
-            continue;
-        }
-        const double g =
-            separation(falling.shape, xf, ground.shape, transform_of(initial_state(ground)));
-        gap = gap ? std::min(*gap, g) : g;
+// A formula that does not apply to the scene (exact_answers.h) is refused at
+// the key its refusal blames: the entry, its body or its other body.
+void reject_refusal(const std::optional<Refusal>& refusal, const Node& entry, const Node& body,
+                    const Node* other = nullptr) {
+    if (!refusal) {
+        return;
     }
-    return gap;
-}
-
-void require_gap_above_ground(const Node& node, const Scene& scene, std::size_t body,
-                              const std::string& formula) {
-    const std::string name = "'" + scene.bodies[body].name + "'";
-    const std::optional<double> gap = gap_to_static_ground(scene, body);
-    if (!gap) {
-        node.fail(formula + " needs static ground for " + name +
-                  " to fall on, but every body is dynamic");
+    switch (refusal->where) {
+    case Refusal::Where::entry:
+        entry.fail(refusal->message);
+    case Refusal::Where::body:
+        body.fail(refusal->message);
+    case Refusal::Where::other:
+        (other ? *other : entry).fail(refusal->message);
     }
-    if (!(*gap > 0.0)) {
-        node.fail(formula + " needs a gap between " + name +
-                  " and the static ground at t = 0, but it touches it");
-    }
-}
-
-// Gravity (0, -g): the formulas are written for ground below and g >= 0.
-void require_downward_gravity(const Node& node, const Scene& scene, const std::string& formula,
-                              bool allow_zero) {
-    const Vec2 g = scene.gravity;
-    const bool downward = g.x == 0.0 && (allow_zero ? g.y <= 0.0 : g.y < 0.0);
-    if (!downward) {
-        node.fail(formula + " needs gravity (0, -g) with g " + (allow_zero ? ">=" : ">") +
-                  " 0, but the scene's gravity is " + vec2_text(g));
-    }
-}
-
-// The polygon's vertices in the world at t = 0.
-std::vector<Vec2> world_vertices(const SceneBody& body) {
-    const Transform xf = transform_of(initial_state(body));
-    std::vector<Vec2> out;
-    for (int i = 0; i < body.shape.polygon.count; ++i) {
-        out.push_back(apply(xf, body.shape.polygon.vertices[static_cast<std::size_t>(i)]));
-    }
-    return out;
-}
-
-// Below this height difference two corners count as level: the landing would
-// touch both (PHYSICS.md's formula is for a single corner).
-constexpr double level_corners = 1e-9;
-
-// Whether a polygon's lowest corner is alone (the next is at least
-// level_corners higher) and straight below the centre, to rounding of the
-// turn: then the ground's impulse passes through the centre of mass and a
-// body free to rotate still bounces without spin.
-bool lands_on_corner_below_centre(const SceneBody& body) {
-    const std::vector<Vec2> corners = world_vertices(body);
-    std::vector<Vec2> by_height = corners;
-    std::sort(by_height.begin(), by_height.end(), [](Vec2 a, Vec2 b) { return a.y < b.y; });
-    double size = 0.0;
-    for (const Vec2 c : corners) {
-        size = std::max(size, length(c - body.position));
-    }
-    return by_height[1].y - by_height[0].y >= level_corners &&
-           std::abs(by_height[0].x - body.position.x) <= 1e-12 * size;
 }
 
 // PHYSICS.md, drop: "no rotation", released at rest.
 void validate_drop(const Node& node, const Scene& scene, Expectation& expectation) {
+    const std::string formula = "the drop formula";
     const Node body_node = required_member(node, "body");
-    const std::size_t body = read_dynamic_body_reference(body_node, scene, "the drop formula");
+    const std::size_t body = read_dynamic_body_reference(body_node, scene, formula);
     expectation.body = scene.bodies[body].name;
     expectation.impacts = static_cast<int>(read_whole(required_member(node, "impacts"), 1, 10000));
-    const std::string formula = "the drop formula";
-    require_downward_gravity(node, scene, formula, false);
-    const SceneBody& b = scene.bodies[body];
-    const std::string name = "'" + b.name + "'";
-    if (b.velocity != Vec2{}) {
-        body_node.fail(formula + " needs the body at rest at t = 0, but " + name +
-                       " has velocity " + vec2_text(b.velocity));
-    }
-    if (b.angular_velocity != 0.0) {
-        body_node.fail(formula + " needs the body at rest at t = 0, but " + name +
-                       " has angular velocity " + number_text(b.angular_velocity) + " rad/s");
-    }
-    // A free polygon lands on one corner first (the seed's single contact) and
-    // starts to spin, unless that corner is straight below its centre; a disc
-    // (impulse through its centre) and a non-rotating body bounce straight.
-    if (b.shape.type == ShapeType::polygon && b.rotation && !lands_on_corner_below_centre(b)) {
-        body_node.fail(formula + " has no rotation, but " + name +
-                       " is a polygon free to rotate that does not land on one corner below "
-                       "its centre; give it \"rotation\": false");
-    }
-    require_gap_above_ground(body_node, scene, body, formula);
+    reject_refusal(drop_refusal(scene, scene.bodies[body], formula), node, body_node);
 }
 
 // PHYSICS.md, single-corner impact: a rotating polygon, not spinning, falling
 // onto static ground on exactly one corner.
 void validate_corner_impact(const Node& node, const Scene& scene, Expectation& expectation) {
-    const Node body_node = required_member(node, "body");
     const std::string formula = "the corner-impact formula";
+    const Node body_node = required_member(node, "body");
     const std::size_t body = read_dynamic_body_reference(body_node, scene, formula);
-    const SceneBody& b = scene.bodies[body];
-    expectation.body = b.name;
-    const std::string name = "'" + b.name + "'";
-    if (b.shape.type != ShapeType::polygon) {
-        body_node.fail(formula + " needs a polygon, but " + name + " is a circle");
-    }
-    if (!b.rotation) {
-        body_node.fail(formula + " needs a body free to rotate, but " + name +
-                       " has \"rotation\": false");
-    }
-    if (b.angular_velocity != 0.0) {
-        body_node.fail(formula + " needs angular velocity 0 at t = 0, but " + name + " has " +
-                       number_text(b.angular_velocity) + " rad/s");
-    }
-    require_downward_gravity(node, scene, formula, true);
-    std::vector<double> heights;
-    for (const Vec2 v : world_vertices(b)) {
-        heights.push_back(v.y);
-    }
-    std::sort(heights.begin(), heights.end());
-    if (!(heights[1] - heights[0] >= level_corners)) {
-        body_node.fail(formula + " needs one lowest corner, but " + name +
-                       " has two corners within " + number_text(level_corners) +
-                       " m of the same height (a flat landing)");
-    }
-    require_gap_above_ground(body_node, scene, body, formula);
-    if (scene.gravity.y == 0.0 && !(b.velocity.y < 0.0)) {
-        body_node.fail(formula + " without gravity needs the body moving down, but " + name +
-                       " has vy = " + number_text(b.velocity.y));
-    }
-}
-
-// Parallel within rounding: |cross| <= 1e-9 for unit vectors.
-constexpr double parallel_tolerance = 1e-9;
-
-// Whether some face of a polygon body faces along the unit vector u (either
-// way) at t = 0: a polygon pair's contact normal is always a face normal
-// (docs/engine.md, narrow phase).
-bool has_face_along(const SceneBody& body, Vec2 u) {
-    if (body.shape.type != ShapeType::polygon) {
-        return false;
-    }
-    const Rotation q = rotation_of(body.angle);
-    for (int i = 0; i < body.shape.polygon.count; ++i) {
-        const Vec2 n = rotate(q, body.shape.polygon.normals[static_cast<std::size_t>(i)]);
-        if (std::abs(cross(n, u)) <= parallel_tolerance) {
-            return true;
-        }
-    }
-    return false;
+    expectation.body = scene.bodies[body].name;
+    reject_refusal(corner_impact_refusal(scene, scene.bodies[body], formula), node, body_node);
 }
 
 // PHYSICS.md, head-on: 1D, no rotation, free space.
@@ -1138,47 +818,11 @@ void validate_head_on(const Node& node, const Scene& scene, Expectation& expecta
     const std::string formula = "the head-on formula";
     const Node a_node = required_member(node, "a");
     const Node b_node = required_member(node, "b");
-    const std::size_t ia = read_dynamic_body_reference(a_node, scene, formula);
-    const std::size_t ib = read_dynamic_body_reference(b_node, scene, formula);
-    const SceneBody& a = scene.bodies[ia];
-    const SceneBody& b = scene.bodies[ib];
-    if (ia == ib) {
-        b_node.fail(formula + " needs two distinct bodies, but a and b are both '" + a.name + "'");
-    }
+    const SceneBody& a = scene.bodies[read_dynamic_body_reference(a_node, scene, formula)];
+    const SceneBody& b = scene.bodies[read_dynamic_body_reference(b_node, scene, formula)];
+    reject_refusal(head_on_refusal(scene, a, b, formula), node, a_node, &b_node);
     expectation.body = a.name;
     expectation.other = b.name;
-    if (scene.gravity != Vec2{}) {
-        node.fail(formula + " needs zero gravity, but the scene's gravity is " +
-                  vec2_text(scene.gravity));
-    }
-    // An impulse through both centres turns neither body; for a free polygon
-    // the seed's single contact point is a corner, off the line of centres.
-    for (const auto& [body, body_node] : {std::pair{&a, &a_node}, {&b, &b_node}}) {
-        if (body->shape.type == ShapeType::polygon && body->rotation) {
-            body_node->fail(formula + " has no rotation, but '" + body->name +
-                            "' is a polygon free to rotate; give it \"rotation\": false");
-        }
-    }
-    const Vec2 line = b.position - a.position;
-    const Vec2 u = (1.0 / length(line)) * line;
-    const Vec2 relative = a.velocity - b.velocity;
-    const double closing = dot(relative, u);
-    const std::string pair = "'" + a.name + "' and '" + b.name + "'";
-    if (!(closing > 0.0)) {
-        node.fail(formula + " needs " + pair +
-                  " approaching along the line of their centres, but their closing speed is " +
-                  number_text(closing) + " m/s");
-    }
-    if (std::abs(cross(u, relative)) > parallel_tolerance * length(relative)) {
-        node.fail(formula + " needs " + pair +
-                  " approaching along the line of their centres, but their relative velocity " +
-                  vec2_text(relative) + " is not along " + vec2_text(u));
-    }
-    const bool polygons = a.shape.type == ShapeType::polygon || b.shape.type == ShapeType::polygon;
-    if (polygons && !has_face_along(a, u) && !has_face_along(b, u)) {
-        node.fail(formula + " needs the contact normal along the line of centres " + vec2_text(u) +
-                  ", but no face of " + pair + " is perpendicular to it");
-    }
 }
 
 const std::vector<std::string> conserved_quantities = {"momentum", "angular_momentum", "energy"};
@@ -1187,23 +831,8 @@ const std::vector<std::string> conserved_quantities = {"momentum", "angular_mome
 // exactly and angular momentum about any fixed point; with e = 1 it conserves
 // kinetic energy".
 void require_conserved(const Node& node, const Scene& scene, const std::string& quantity) {
-    if (quantity == "energy") {
-        if (scene.restitution != 1.0) {
-            node.fail("energy is conserved only with restitution 1, but the scene's is " +
-                      number_text(scene.restitution) + "; use energy-non-increasing");
-        }
-        return;
-    }
-    const std::string what = quantity == "momentum" ? "momentum" : "angular momentum";
-    if (scene.gravity != Vec2{}) {
-        node.fail(what + " is conserved only in free space, but the scene's gravity is " +
-                  vec2_text(scene.gravity));
-    }
-    for (const SceneBody& body : scene.bodies) {
-        if (body.is_static) {
-            node.fail(what + " is conserved only in free space, but '" + body.name +
-                      "' is static and takes up " + what + " in a collision");
-        }
+    if (const std::optional<std::string> refusal = conservation_refusal(scene, quantity)) {
+        node.fail(*refusal + (quantity == "energy" ? "; use energy-non-increasing" : ""));
     }
 }
 
@@ -1362,9 +991,133 @@ void read_expectations(const Node& node, Scene& scene) {
     }
 }
 
-const std::vector<std::string> scene_keys = {"schema",      "name",      "description", "gravity",
-                                             "restitution", "dt",        "duration",    "solver",
-                                             "bodies",      "tolerance", "expectations"};
+// ---------------------------------------------------------------- box2d
+
+struct Box2dObservableKind {
+    const char* name;
+    Box2dObservable::Kind kind;
+    std::vector<std::string> keys; // besides kind, atol, rtol
+};
+
+const std::vector<Box2dObservableKind>& box2d_observable_kinds() {
+    using Kind = Box2dObservable::Kind;
+    static const std::vector<Box2dObservableKind> kinds = {
+        {"impact-times", Kind::impact_times, {"body", "count"}},
+        {"apex-heights", Kind::apex_heights, {"body", "count"}},
+        {"apex-ratios", Kind::apex_ratios, {"body", "count"}},
+        {"post-impact-velocity", Kind::post_impact_velocity, {"body", "impact"}},
+        {"restitution-residual", Kind::restitution_residual, {"body"}},
+        {"momentum", Kind::momentum, {}},
+        {"angular-momentum", Kind::angular_momentum, {}},
+        {"energy", Kind::energy, {}},
+    };
+    return kinds;
+}
+
+const Box2dObservableKind& read_box2d_observable_kind(const Node& node) {
+    std::vector<std::string> names;
+    for (const Box2dObservableKind& kind : box2d_observable_kinds()) {
+        if (node.json().is_string() && node.json().get<std::string>() == kind.name) {
+            return kind;
+        }
+        names.push_back(std::string("\"") + kind.name + "\"");
+    }
+    node.fail("must be one of " + list_of(names) + ", got " + describe(node.json()));
+}
+
+// Impacts counted or named by number: far more than any scene has.
+constexpr long long max_box2d_impacts = 10000;
+// Box2D's substeps and iteration counts: far more than any useful setting.
+constexpr long long max_box2d_setting = 1000;
+
+// One entry of box2d.observables (scene.h, Box2dObservable). An observable
+// whose meaning rests on a formula of PHYSICS.md is held to that formula's
+// preconditions, as the expectations are: an apex measured above the contact
+// height y0 - h0 needs a body falling straight onto static ground.
+Box2dObservable read_box2d_observable(const Node& node, const Scene& scene) {
+    require_object(node);
+    const Box2dObservableKind& kind = read_box2d_observable_kind(required_member(node, "kind"));
+    std::vector<std::string> keys = {"kind", "atol", "rtol"};
+    keys.insert(keys.end(), kind.keys.begin(), kind.keys.end());
+    reject_unknown_keys(node, keys);
+    Box2dObservable observable;
+    observable.kind = kind.kind;
+    observable.path = node.path();
+    // No silent defaults: every observable says how close Box2D must come.
+    if (!node.has("atol") && !node.has("rtol")) {
+        node.fail("must give atol or rtol (or both); an observable has no default tolerance");
+    }
+    if (const std::optional<Node> atol = optional_member(node, "atol")) {
+        observable.atol = read_non_negative(*atol);
+    }
+    if (const std::optional<Node> rtol = optional_member(node, "rtol")) {
+        observable.rtol = read_non_negative(*rtol);
+    }
+    const std::string subject = std::string("the ") + kind.name + " observable";
+    const auto body_of = [&](const Node& body_node) {
+        const std::size_t index = read_dynamic_body_reference(body_node, scene, subject);
+        observable.body = scene.bodies[index].name;
+        return index;
+    };
+    using Kind = Box2dObservable::Kind;
+    switch (kind.kind) {
+    case Kind::impact_times:
+    case Kind::apex_heights:
+    case Kind::apex_ratios: {
+        const Node body_node = required_member(node, "body");
+        const std::size_t body = body_of(body_node);
+        observable.count =
+            static_cast<int>(read_whole(required_member(node, "count"), 1, max_box2d_impacts));
+        if (kind.kind != Kind::impact_times) {
+            reject_refusal(drop_refusal(scene, scene.bodies[body],
+                                        std::string("the drop formula behind ") + kind.name),
+                           node, body_node);
+        }
+        break;
+    }
+    case Kind::post_impact_velocity:
+        body_of(required_member(node, "body"));
+        observable.impact =
+            static_cast<int>(read_whole(required_member(node, "impact"), 1, max_box2d_impacts));
+        break;
+    case Kind::restitution_residual:
+        if (const std::optional<Node> body = optional_member(node, "body")) {
+            body_of(*body);
+        }
+        break;
+    case Kind::momentum:
+    case Kind::angular_momentum:
+    case Kind::energy:
+        break;
+    }
+    return observable;
+}
+
+// "box2d": how `impulse box2d` runs the scene in Box2D and what it compares.
+void read_box2d(const Node& node, Scene& scene) {
+    require_object(node);
+    reject_unknown_keys(node,
+                        {"substeps", "velocity_iterations", "position_iterations", "observables"});
+    Box2dSettings& settings = scene.box2d;
+    for (const auto& [key, value] :
+         {std::pair{"substeps", &settings.substeps},
+          std::pair{"velocity_iterations", &settings.velocity_iterations},
+          std::pair{"position_iterations", &settings.position_iterations}}) {
+        if (const std::optional<Node> given = optional_member(node, key)) {
+            *value = static_cast<int>(read_whole(*given, 1, max_box2d_setting));
+        }
+    }
+    if (const std::optional<Node> list = optional_member(node, "observables")) {
+        require_array(*list);
+        for (std::size_t i = 0; i < list->json().size(); ++i) {
+            settings.observables.push_back(read_box2d_observable(list->element(i), scene));
+        }
+    }
+}
+
+const std::vector<std::string> scene_keys = {"schema",      "name",      "description",  "gravity",
+                                             "restitution", "dt",        "duration",     "solver",
+                                             "bodies",      "tolerance", "expectations", "box2d"};
 
 Scene read_scene(const Node& root) {
     if (!root.json().is_object()) {
@@ -1386,12 +1139,15 @@ Scene read_scene(const Node& root) {
         read_solver(*solver, scene.solver);
     }
     read_bodies(required_member(root, "bodies"), scene);
-    // Both refer to bodies, so they are read once the bodies are known.
+    // These refer to bodies, so they are read once the bodies are known.
     if (const std::optional<Node> tolerance = optional_member(root, "tolerance")) {
         read_tolerances(*tolerance, scene.tolerances);
     }
     if (const std::optional<Node> expectations = optional_member(root, "expectations")) {
         read_expectations(*expectations, scene);
+    }
+    if (const std::optional<Node> box2d = optional_member(root, "box2d")) {
+        read_box2d(*box2d, scene);
     }
     return scene;
 }
@@ -1418,9 +1174,7 @@ Json canonical(const Json& value) {
 }
 
 Scene parse_scene(const std::string& text, const std::string& file) {
-    reject_merge_conflict_markers(text, file);
-    reject_deep_nesting(text, file);
-    const Json document = parse_json(text, file);
+    const Json document = parse_strict_json<Json>(text, file);
     Scene scene = read_scene(Node(document, "", file));
     // Sorted keys and no whitespace: the same content gives the same
     // fingerprint however the file is laid out.
@@ -1450,6 +1204,8 @@ const char* toi_method_name(TimeOfImpactMethod method) {
     switch (method) {
     case TimeOfImpactMethod::bisection:
         return "bisection";
+    case TimeOfImpactMethod::secant:
+        return "secant";
     }
     return "unknown";
 }
@@ -1460,6 +1216,17 @@ const char* contact_mode_name(ContactMode mode) {
         return "single";
     }
     return "unknown";
+}
+
+bool toi_method_from_name(const std::string& name, TimeOfImpactMethod& out) {
+    for (int i = 0; i < time_of_impact_method_count; ++i) {
+        const auto candidate = static_cast<TimeOfImpactMethod>(i);
+        if (name == toi_method_name(candidate)) {
+            out = candidate;
+            return true;
+        }
+    }
+    return false;
 }
 
 bool integrator_from_name(const std::string& name, Integrator& out) {

@@ -57,6 +57,36 @@ struct Expectation {
     double rtol = 0.0;
 };
 
+// What `impulse box2d` compares and how Box2D is run (the scene's "box2d"
+// block). Observables survive Box2D's differences (skin, iterations, position
+// correction, single precision): PHYSICS.md, "Box2D, the second reference".
+struct Box2dObservable {
+    enum class Kind {
+        impact_times,         // times of the body's first `count` impacts (within a step)
+        apex_heights,         // apex gap above the contact height after each of `count` impacts
+        apex_ratios,          // apex n / apex n-1: e^2 in the exact model
+        post_impact_velocity, // vx, vy, omega just after impact `impact` (1-based)
+        restitution_residual, // vn_after + e vn_before of every event: 0 in the exact model
+        momentum,             // largest drift of total linear momentum over the run
+        angular_momentum,     // largest drift of angular momentum about the origin
+        energy,               // largest drift (or loss) of kinetic + potential energy
+    };
+    Kind kind = Kind::impact_times;
+    std::string path; // "box2d.observables[1]"
+    std::string body;
+    int count = 1;
+    int impact = 1;
+    double atol = 0.0;
+    double rtol = 0.0;
+};
+
+struct Box2dSettings {
+    int substeps = 1; // Box2D steps per scene step (each dt / substeps)
+    int velocity_iterations = 8;
+    int position_iterations = 3;
+    std::vector<Box2dObservable> observables;
+};
+
 struct Scene {
     std::string file; // as given on the command line, for messages
     std::string name;
@@ -69,6 +99,7 @@ struct Scene {
     std::vector<SceneBody> bodies;
     Tolerances tolerances;                 // "tolerance": per channel, empty when not given
     std::vector<Expectation> expectations; // "expectations", in file order
+    Box2dSettings box2d;                   // "box2d": how to compare with Box2D
     std::string sha256;                // of the canonical JSON of the file's content
     std::vector<std::string> warnings; // e.g. a polygon recentred on its centroid
 };
@@ -93,5 +124,6 @@ const char* toi_method_name(TimeOfImpactMethod method);
 const char* contact_mode_name(ContactMode mode);
 // false when the name is unknown
 bool integrator_from_name(const std::string& name, Integrator& out);
+bool toi_method_from_name(const std::string& name, TimeOfImpactMethod& out);
 
 } // namespace impulse::harness

@@ -6,6 +6,7 @@
 
 #include "input_error.h"
 #include "number_format.h"
+#include "strict_json.h"
 
 #include <cmath>
 #include <cstddef>
@@ -161,25 +162,6 @@ struct Invalid {
     throw Invalid{path, message};
 }
 
-// "solver" + "dt" -> "solver.dt"; keys that are not plain names are quoted so
-// the path stays unambiguous: events[0]["a b"].
-std::string key_path(const std::string& parent, const std::string& key) {
-    bool plain = !key.empty();
-    for (const char c : key) {
-        const bool name_char = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
-                               (c >= '0' && c <= '9') || c == '_' || c == '-';
-        plain = plain && name_char;
-    }
-    if (!plain) {
-        return parent + "[" + quote(key) + "]";
-    }
-    return parent.empty() ? key : parent + "." + key;
-}
-
-std::string index_path(const std::string& parent, std::size_t index) {
-    return parent + "[" + std::to_string(index) + "]";
-}
-
 // `got "abc"`, `got true`, `got an array`: what was found instead, short
 // enough for one line.
 std::string got(const Json& value) {
@@ -202,118 +184,6 @@ std::string got(const Json& value) {
     return "got " + text;
 }
 
-// nlohmann's what() reads "[json.exception.parse_error.101] parse error at
-// line 3, column 5: syntax error ..."; keep the part a person needs.
-std::string describe_json_error(const std::string& what) {
-    std::string text = what;
-    const std::size_t bracket = text.find("] ");
-    if (text.rfind("[json.exception.", 0) == 0 && bracket != std::string::npos) {
-        text = text.substr(bracket + 2);
-    }
-    for (const char* prefix : {"parse error at ", "parse error "}) {
-        if (text.rfind(prefix, 0) == 0) {
-            text = text.substr(std::strlen(prefix));
-            break;
-        }
-    }
-    return text;
-}
-
-// The 1-based line of the first merge-conflict marker, or 0 if there is none.
-std::size_t conflict_marker_line(const std::string& text) {
-    std::istringstream lines(text);
-    std::string line;
-    std::size_t number = 0;
-    while (std::getline(lines, line)) {
-        ++number;
-        for (const char* marker : {"<<<<<<<", "=======", ">>>>>>>"}) {
-            if (line.rfind(marker, 0) == 0) {
-                return number;
-            }
-        }
-    }
-    return 0;
-}
-
-// nlohmann keeps only one of two equal keys in an object, without a word. A
-// merge that kept both sides produces exactly that, so the parse callback
-// tracks where it is in the document and refuses the second key.
-class DuplicateKeyCheck {
-  public:
-    bool operator()(int /*depth*/, Json::parse_event_t event, Json& parsed) {
-        using Event = Json::parse_event_t;
-        switch (event) {
-        case Event::object_start:
-            open_.push_back({true, path_of_next_value(), 0, {}, {}});
-            break;
-        case Event::array_start:
-            open_.push_back({false, path_of_next_value(), 0, {}, {}});
-            break;
-        case Event::key:
-            take_key(parsed.get<std::string>()); // a key event always carries a string
-            break;
-        case Event::object_end:
-        case Event::array_end:
-            open_.pop_back();
-            value_done();
-            break;
-        case Event::value:
-            value_done();
-            break;
-        }
-        return true;
-    }
-
-  private:
-    struct Container {
-        bool is_object;
-        std::string path;
-        std::size_t next_index;
-        std::string current_key;
-        std::set<std::string> keys;
-    };
-
-    std::string path_of_next_value() const {
-        if (open_.empty()) {
-            return "";
-        }
-        const Container& parent = open_.back();
-        return parent.is_object ? key_path(parent.path, parent.current_key)
-                                : index_path(parent.path, parent.next_index);
-    }
-
-    void take_key(const std::string& key) {
-        Container& object = open_.back();
-        if (!object.keys.insert(key).second) {
-            fail(key_path(object.path, key),
-                 "the key appears twice in the same object; keep exactly one");
-        }
-        object.current_key = key;
-    }
-
-    void value_done() {
-        if (!open_.empty() && !open_.back().is_object) {
-            ++open_.back().next_index;
-        }
-    }
-
-    std::vector<Container> open_;
-};
-
-Json parse_json(const std::string& text) {
-    if (const std::size_t line = conflict_marker_line(text); line != 0) {
-        fail("", "has a merge-conflict marker at line " + std::to_string(line) +
-                     "; resolve the conflict or regenerate the file");
-    }
-    DuplicateKeyCheck duplicate_check;
-    try {
-        return Json::parse(text, std::ref(duplicate_check));
-    } catch (const Json::exception& error) {
-        // parse_error, or out_of_range for a number too large for a double
-        fail("", "not valid JSON: " + describe_json_error(error.what()));
-    }
-}
-
 // Every type below is checked before get<>(), so nlohmann's type_error never
 // escapes.
 
@@ -332,7 +202,7 @@ void require_array(const Json& value, const std::string& path) {
 const Json& require_key(const Json& object, const std::string& path, const std::string& key) {
     const auto found = object.find(key);
     if (found == object.end()) {
-        fail(key_path(path, key), "the required key is missing");
+        fail(json_member_path(path, key), "the required key is missing");
     }
     return *found;
 }
@@ -350,7 +220,8 @@ void reject_unknown_keys(const Json& object, const std::string& path,
             for (const std::string& name : allowed) {
                 names += (names.empty() ? "" : ", ") + name;
             }
-            fail(key_path(path, item.key()), "unknown key; the keys allowed here are " + names);
+            fail(json_member_path(path, item.key()),
+                 "unknown key; the keys allowed here are " + names);
         }
     }
 }
@@ -415,7 +286,7 @@ void read_fixed_numbers(const Json& value, const std::string& path, double* out,
                        std::to_string(value.size()));
     }
     for (std::size_t i = 0; i < count; ++i) {
-        out[i] = read_number(value[i], index_path(path, i));
+        out[i] = read_number(value[i], json_element_path(path, i));
     }
 }
 
@@ -480,11 +351,11 @@ std::vector<std::string> read_columns(const Json& value) {
     require_array(value, "columns");
     std::vector<std::string> columns;
     for (std::size_t i = 0; i < value.size(); ++i) {
-        const std::string path = index_path("columns", i);
+        const std::string path = json_element_path("columns", i);
         std::string name = read_name(value[i], path);
         for (std::size_t earlier = 0; earlier < columns.size(); ++earlier) {
             if (columns[earlier] == name) {
-                fail(path, quote(name) + " repeats " + index_path("columns", earlier));
+                fail(path, quote(name) + " repeats " + json_element_path("columns", earlier));
             }
         }
         columns.push_back(std::move(name));
@@ -500,7 +371,7 @@ std::vector<std::vector<double>> read_frames(const Json& value, std::size_t colu
     std::vector<std::vector<double>> frames;
     frames.reserve(value.size());
     for (std::size_t i = 0; i < value.size(); ++i) {
-        const std::string path = index_path("frames", i);
+        const std::string path = json_element_path("frames", i);
         const Json& row = value[i];
         require_array(row, path);
         if (row.size() != column_count) {
@@ -509,7 +380,7 @@ std::vector<std::vector<double>> read_frames(const Json& value, std::size_t colu
         }
         std::vector<double> frame(column_count);
         for (std::size_t j = 0; j < column_count; ++j) {
-            frame[j] = read_number(row[j], index_path(path, j));
+            frame[j] = read_number(row[j], json_element_path(path, j));
         }
         frames.push_back(std::move(frame));
     }
@@ -524,14 +395,14 @@ TrajectoryEvent read_event(const Json& value, const std::string& path) {
         return require_key(value, path, key);
     };
     TrajectoryEvent event;
-    event.t = read_number(field("t"), key_path(path, "t"));
-    event.a = read_name(field("a"), key_path(path, "a"));
-    event.b = read_name(field("b"), key_path(path, "b"));
-    read_fixed_numbers(field("point"), key_path(path, "point"), event.point, 2);
-    read_fixed_numbers(field("normal"), key_path(path, "normal"), event.normal, 2);
-    event.impulse = read_number(field("impulse"), key_path(path, "impulse"));
-    event.vn_before = read_number(field("vn_before"), key_path(path, "vn_before"));
-    event.vn_after = read_number(field("vn_after"), key_path(path, "vn_after"));
+    event.t = read_number(field("t"), json_member_path(path, "t"));
+    event.a = read_name(field("a"), json_member_path(path, "a"));
+    event.b = read_name(field("b"), json_member_path(path, "b"));
+    read_fixed_numbers(field("point"), json_member_path(path, "point"), event.point, 2);
+    read_fixed_numbers(field("normal"), json_member_path(path, "normal"), event.normal, 2);
+    event.impulse = read_number(field("impulse"), json_member_path(path, "impulse"));
+    event.vn_before = read_number(field("vn_before"), json_member_path(path, "vn_before"));
+    event.vn_after = read_number(field("vn_after"), json_member_path(path, "vn_after"));
     return event;
 }
 
@@ -540,13 +411,13 @@ std::vector<TrajectoryEvent> read_events(const Json& value) {
     std::vector<TrajectoryEvent> events;
     events.reserve(value.size());
     for (std::size_t i = 0; i < value.size(); ++i) {
-        events.push_back(read_event(value[i], index_path("events", i)));
+        events.push_back(read_event(value[i], json_element_path("events", i)));
     }
     return events;
 }
 
-Trajectory read_validated(const std::string& text) {
-    const Json top = parse_json(text);
+Trajectory read_validated(const std::string& text, const std::string& file) {
+    const Json top = parse_strict_json<Json>(text, file);
     if (!top.is_object()) {
         fail("", "the top level must be a JSON object, " + got(top));
     }
@@ -637,7 +508,7 @@ std::string write_trajectory(const Trajectory& trajectory) {
 
 Trajectory read_trajectory(const std::string& text, const std::string& file) {
     try {
-        return read_validated(text);
+        return read_validated(text, file);
     } catch (const Invalid& invalid) {
         throw InputError(file, invalid.path, invalid.message);
     }

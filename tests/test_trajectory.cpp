@@ -378,6 +378,10 @@ TEST_CASE("broken trajectory files are InputErrors naming file and path", "[traj
     SECTION("top level not an object") {
         check_rejected("[1, 2]", "", "must be a JSON object");
     }
+    SECTION("nesting deep enough to exhaust a recursive parser") {
+        check_rejected(std::string(100000, '[') + std::string(100000, ']'), "",
+                       "nested too deeply");
+    }
     SECTION("wrong schema") {
         check_rejected(replace_once(good, "\"impulse/trajectory@1\"", "\"impulse/scene@1\""),
                        "schema", "must be \"impulse/trajectory@1\"");
@@ -405,7 +409,7 @@ TEST_CASE("broken trajectory files are InputErrors naming file and path", "[traj
     SECTION("duplicate key") {
         check_rejected(replace_once(good, "\"dt\": 0.016666666666666666",
                                     "\"dt\": 0.016666666666666666, \"dt\": 0.01"),
-                       "solver.dt", "appears twice");
+                       "solver.dt", "appears more than once");
     }
     SECTION("string where a number belongs") {
         check_rejected(replace_once(good, frame_1,

@@ -21,6 +21,7 @@ verbs:
   check [SCENE...]   the gate: simulate scenes and diff them against their goldens
   bless [SCENE...]   write goldens (scripts/regen-goldens calls this)
   diff A B           diff two trajectory files with the rules of check
+  box2d [SCENE...]   run scenes in Box2D with friction off and compare observables
   render SCENE|TRAJECTORY
                      an SVG picture of the motion
 
@@ -117,6 +118,9 @@ int main(int argc, char** argv) {
         }
         if (verb == "diff") {
             return diff_verb(rest, out, err);
+        }
+        if (verb == "box2d") {
+            return box2d_verb(rest, out, err);
         }
         if (verb == "render") {
             return render_verb(rest, out, err);

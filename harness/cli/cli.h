@@ -47,6 +47,7 @@ int run_verb(const std::vector<std::string>& args, std::ostream& out, std::ostre
 int check_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int bless_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int diff_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int render_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 } // namespace impulse::harness::cli

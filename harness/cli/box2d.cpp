@@ -1,0 +1,438 @@
+// `impulse box2d [SCENE...]`: the second reference. Runs each scene in the
+// impulse engine and in Box2D with friction off (box2d_simulator.h) and
+// compares the observables the scene's "box2d" block names (observables.h),
+// each against the exact answer of PHYSICS.md where there is one.
+#include "box2d_simulator.h"
+#include "cli.h"
+#include "gate.h"
+#include "input_error.h"
+#include "observables.h"
+#include "run.h"
+#include "simulator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <ostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace impulse::harness::cli {
+
+namespace {
+
+constexpr const char* box2d_help =
+    R"(usage: impulse box2d [SCENE...] [options]
+
+Runs each scene in the impulse engine and in Box2D 2.4.1 (friction 0,
+restitution equal to the scene's e, restitution threshold 0, no sleeping, no
+damping, polygons shrunk by Box2D's skin) and compares the observables the
+scene's "box2d" block names: impact times, apex heights and ratios,
+post-impact velocities, the restitution residual, momentum, angular momentum
+and energy. Each row shows the exact answer of PHYSICS.md where there is one,
+both runs' values and errors, and whether |Box2D - impulse| is within the
+observable's atol + rtol |impulse|. With no SCENE, every canonical scene in
+ROOT/harness/scenes/. A SCENE is a name or a path.
+
+The impulse engine integrates with symplectic-euler, Box2D's own integrator,
+so the difference that remains is the collision model's. Symplectic Euler's
+bounces die out sooner than the scene's own integrator's: when the impulse
+engine stops on a Zeno cascade or a resting contact inside the scene, both
+runs are compared up to its last complete step, and the output says so.
+
+  --root DIR                   where harness/scenes/ is (default: .)
+  --json                       the comparison as JSON, for scripts
+  --dt S                       time step of both runs, in seconds
+  --substeps N                 Box2D steps per scene step (scene's box2d.substeps, default 1)
+  --velocity-iterations N      Box2D's velocity iterations (default 8)
+  --position-iterations N      Box2D's position iterations (default 3)
+  --scene-integrator           run the impulse engine with the scene's own integrator
+
+Exit: 0 every observable within its tolerance, 1 one is not, 2 bad input (a
+broken scene, a bad option, a shape Box2D cannot take, a build without Box2D).
+)";
+
+int parse_count(const std::string& option, const std::string& text) {
+    int value = 0;
+    std::istringstream in(text);
+    if (!(in >> value) || !in.eof() || value < 1 || value > 1000) {
+        throw UsageError(option + " must be a whole number from 1 to 1000, got '" + text + "'");
+    }
+    return value;
+}
+
+struct Options {
+    std::optional<double> dt;
+    std::optional<int> substeps, velocity_iterations, position_iterations;
+    bool scene_integrator = false;
+};
+
+#ifdef IMPULSE_WITH_BOX2D
+// About six significant digits: a table is read, not parsed.
+std::string short_number(std::optional<double> value) {
+    if (!value) {
+        return "-";
+    }
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.6g", *value);
+    return buffer;
+}
+
+// One scene compared: everything both outputs show.
+struct Comparison {
+    std::string name;
+    std::string file;
+    double dt = 0.0;
+    std::string integrator;       // the impulse run's
+    std::string scene_integrator; // the scene's own
+    Box2dSettings box2d;          // as run, observables included
+    std::string impulse_engine;
+    std::string box2d_engine;
+    std::vector<std::string> warnings;
+    std::string stopped; // why and where the comparison ends early, when it does
+    std::vector<ObservableRow> rows;
+
+    std::size_t outside() const {
+        return static_cast<std::size_t>(std::count_if(
+            rows.begin(), rows.end(), [](const ObservableRow& r) { return !r.within; }));
+    }
+    bool passed() const { return outside() == 0; }
+};
+
+// The impulse engine refuses to go on where the seed model ends (a Zeno
+// cascade, a resting contact: README, "Canonical scenes"). Scenes end before
+// that with their own integrator; symplectic Euler loses a little speed in
+// every flight, so its bounces die out sooner and can reach the limit inside
+// the scene. The run then stops at the last step it completed and both runs
+// are compared up to there: the observables of the bounces before are sound.
+class StoppingSimulator final : public Simulator {
+  public:
+    explicit StoppingSimulator(std::unique_ptr<Simulator> inner) : inner_(std::move(inner)) {}
+
+    std::string engine() const override { return inner_->engine(); }
+    std::vector<std::pair<std::string, std::string>> settings() const override {
+        return inner_->settings();
+    }
+    void step(double t0, double dt) override {
+        if (stopped_at_) {
+            return;
+        }
+        try {
+            inner_->step(t0, dt);
+        } catch (const InputError& error) {
+            stopped_at_ = t0;
+            reason_ = error.what();
+        }
+    }
+    BodyState state(int index) const override { return inner_->state(index); }
+    std::vector<TrajectoryEvent> take_events() override { return inner_->take_events(); }
+
+    const std::optional<double>& stopped_at() const { return stopped_at_; }
+    const std::string& reason() const { return reason_; }
+
+  private:
+    std::unique_ptr<Simulator> inner_;
+    std::optional<double> stopped_at_;
+    std::string reason_;
+};
+
+// Keeps the frames and events up to time `end`.
+void truncate(Trajectory& trajectory, double end) {
+    const auto after = [end](double t) { return t > end; };
+    trajectory.frames.erase(
+        std::remove_if(trajectory.frames.begin(), trajectory.frames.end(),
+                       [&](const std::vector<double>& f) { return f.empty() || after(f.front()); }),
+        trajectory.frames.end());
+    trajectory.events.erase(std::remove_if(trajectory.events.begin(), trajectory.events.end(),
+                                           [&](const TrajectoryEvent& e) { return after(e.t); }),
+                            trajectory.events.end());
+}
+
+Comparison compare_scene(const std::string& path, const Options& options) {
+    const Scene scene = load_scene(path);
+    Comparison c;
+    c.name = scene.name;
+    c.file = scene.file;
+    c.warnings = scene.warnings;
+    c.scene_integrator = integrator_name(scene.solver.integrator);
+    if (scene.box2d.observables.empty()) {
+        return c;
+    }
+    // --dt is the step of both runs; the integrator is the impulse engine's only.
+    Overrides overrides;
+    overrides.dt = options.dt;
+    Scene box2d_scene = with_overrides(scene, overrides);
+    Box2dSettings& settings = box2d_scene.box2d;
+    settings.substeps = options.substeps.value_or(settings.substeps);
+    settings.velocity_iterations =
+        options.velocity_iterations.value_or(settings.velocity_iterations);
+    settings.position_iterations =
+        options.position_iterations.value_or(settings.position_iterations);
+    if (!options.scene_integrator) {
+        overrides.integrator = Integrator::symplectic_euler;
+    }
+    const Scene impulse_scene = with_overrides(scene, overrides);
+
+    StoppingSimulator impulse_simulator(make_impulse_simulator(impulse_scene));
+    Trajectory impulse = record(impulse_simulator, impulse_scene);
+    std::vector<std::string> warnings;
+    const std::unique_ptr<Simulator> box2d_simulator = make_box2d_simulator(box2d_scene, warnings);
+    Trajectory box2d = record(*box2d_simulator, box2d_scene);
+    if (const std::optional<double> end = impulse_simulator.stopped_at()) {
+        truncate(impulse, *end);
+        truncate(box2d, *end);
+        c.stopped = "the impulse engine stopped in the step after t = " + short_number(*end) +
+                    " s (" + impulse_simulator.reason() +
+                    "); both runs are compared up to t = " + short_number(*end) + " s";
+    }
+
+    c.dt = box2d_scene.dt;
+    c.integrator = integrator_name(impulse_scene.solver.integrator);
+    c.box2d = settings;
+    c.impulse_engine = impulse.engine;
+    c.box2d_engine = box2d.engine;
+    c.warnings.insert(c.warnings.end(), warnings.begin(), warnings.end());
+    c.rows = compare_observables(box2d_scene, impulse, box2d);
+    return c;
+}
+
+std::optional<double> difference(std::optional<double> a, std::optional<double> b) {
+    if (!a || !b) {
+        return std::nullopt;
+    }
+    return *a - *b;
+}
+
+void write_table(std::ostream& out, const Comparison& c) {
+    const std::vector<std::string> header = {"observable",      "exact",       "impulse",
+                                             "Box2D",           "impulse err", "Box2D err",
+                                             "Box2D - impulse", "tolerance",   "within"};
+    std::vector<std::vector<std::string>> cells = {header};
+    for (const ObservableRow& r : c.rows) {
+        cells.push_back({r.name, short_number(r.exact), short_number(r.impulse),
+                         short_number(r.box2d), short_number(difference(r.impulse, r.exact)),
+                         short_number(difference(r.box2d, r.exact)),
+                         short_number(difference(r.box2d, r.impulse)), short_number(r.tolerance),
+                         r.within ? "yes" : "NO"});
+    }
+    std::vector<std::size_t> width(header.size(), 0);
+    for (const auto& line : cells) {
+        for (std::size_t i = 0; i < line.size(); ++i) {
+            width[i] = std::max(width[i], line[i].size());
+        }
+    }
+    for (const auto& line : cells) {
+        std::string text = "  ";
+        for (std::size_t i = 0; i < line.size(); ++i) {
+            // The name column reads left to right; numbers line up on the right.
+            const std::string pad(width[i] - line[i].size(), ' ');
+            text += i == 0 ? line[i] + pad : pad + line[i];
+            text += i + 1 < line.size() ? "  " : "";
+        }
+        out << text << "\n";
+    }
+    for (const ObservableRow& r : c.rows) {
+        if (!r.note.empty()) {
+            out << "  note: " << r.path << ", " << r.name << ": " << r.note << "\n";
+        }
+    }
+}
+
+constexpr const char* legend =
+    R"(What the differences mean (PHYSICS.md, "Box2D, the second reference"):
+  timing       Box2D finds a contact only once the bodies overlap at the end of a
+               step and resolves it in the next step: its impact times lag the exact
+               ones by one to two steps, its bounce starts from inside the ground at
+               the speed of the longer fall, and it applies restitution after that
+               step's gravity kick, so a rebound leaves faster by about e g dt (its
+               restitution residual is e g dt / |vn|). At 30 to 60 Hz this puts its
+               apex heights 10 to 20% above the exact ones.
+  skin         Box2D's polygons carry a skin of b2_polygonRadius = 0.01 m, so their
+               contacts would start that far early; the adapter shrinks every polygon
+               by it, so the skin surface is the true surface, but corners are rounded
+               with that radius and a corner's contact point moves by up to 0.01 m.
+  iterations   Box2D solves contacts by sequential impulses, 8 velocity and 3 position
+               iterations per step unless the scene or an option says otherwise: a
+               contact of several points converges only as far as the iterations go.
+  position     Box2D's position correction (Baumgarte-style pushes out of overlap)
+               moves bodies without changing their velocities: it raises apex heights
+               and potential energy, not post-impact velocities.
+  precision    Box2D computes in single precision: about 1e-7 relative per operation,
+               so conserved quantities drift by about that much per step.
+  errors       impulse err and Box2D err are each run's value minus the exact answer;
+               impulse err is mostly symplectic Euler's own error at this dt (each
+               flight loses about g dt of speed). within: |Box2D - impulse| <= atol +
+               rtol |impulse|, from the scene's box2d block.
+)";
+
+void write_text(std::ostream& out, const std::vector<Comparison>& comparisons,
+                const Options& options) {
+    out << "box2d: " << comparisons.size() << " scene" << (comparisons.size() == 1 ? "" : "s")
+        << "; "
+        << (options.scene_integrator
+                ? "the impulse engine integrates with each scene's own integrator "
+                  "(--scene-integrator), so the differences include the integrators'"
+                : "the impulse engine integrates with symplectic-euler, Box2D's own "
+                  "integrator, so the difference that remains is the collision model's")
+        << "\n";
+    for (const Comparison& c : comparisons) {
+        out << "\n" << c.name << " (" << c.file << ")";
+        if (c.box2d.observables.empty()) {
+            out << ": no observables declared\n";
+            continue;
+        }
+        out << ": dt " << short_number(c.dt) << " s; " << c.impulse_engine << ", " << c.integrator
+            << (c.integrator == c.scene_integrator ? ""
+                                                   : " (the scene's: " + c.scene_integrator + ")")
+            << "; " << c.box2d_engine << ", " << c.box2d.substeps << " substep"
+            << (c.box2d.substeps == 1 ? "" : "s") << ", " << c.box2d.velocity_iterations
+            << " velocity / " << c.box2d.position_iterations << " position iterations\n";
+        if (!c.stopped.empty()) {
+            out << "  " << c.stopped << "\n";
+        }
+        write_table(out, c);
+    }
+    out << "\n";
+    std::size_t width = 4;
+    for (const Comparison& c : comparisons) {
+        width = std::max(width, c.name.size());
+    }
+    int passed = 0;
+    for (const Comparison& c : comparisons) {
+        passed += c.passed() ? 1 : 0;
+        const std::string pad(width - c.name.size(), ' ');
+        out << "  " << (c.passed() ? "ok      " : "FAILED  ") << c.name << pad << "  ";
+        if (c.rows.empty()) {
+            out << "no observables declared\n";
+        } else if (c.passed()) {
+            out << "all " << c.rows.size() << " rows within tolerance\n";
+        } else {
+            out << c.outside() << " of " << c.rows.size() << " rows outside tolerance\n";
+        }
+    }
+    const std::size_t failed = comparisons.size() - static_cast<std::size_t>(passed);
+    out << comparisons.size() << " scene" << (comparisons.size() == 1 ? "" : "s") << ": " << passed
+        << " passed, " << failed << " failed\n\n"
+        << legend;
+}
+
+// ---------------------------------------------------------------- JSON
+
+nlohmann::json optional_number(std::optional<double> value) {
+    return value && std::isfinite(*value) ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
+std::string write_json(const std::vector<Comparison>& comparisons, const Options& options) {
+    nlohmann::ordered_json scenes = nlohmann::ordered_json::array();
+    for (const Comparison& c : comparisons) {
+        nlohmann::ordered_json scene;
+        scene["name"] = c.name;
+        scene["file"] = c.file;
+        scene["passed"] = c.passed();
+        if (c.rows.empty()) {
+            scene["note"] = "no observables declared";
+        } else {
+            scene["dt"] = c.dt;
+            scene["impulse"] = {{"engine", c.impulse_engine}, {"integrator", c.integrator}};
+            scene["box2d"] = {{"engine", c.box2d_engine},
+                              {"substeps", c.box2d.substeps},
+                              {"velocity_iterations", c.box2d.velocity_iterations},
+                              {"position_iterations", c.box2d.position_iterations}};
+        }
+        scene["warnings"] = c.warnings;
+        scene["stopped"] =
+            c.stopped.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(c.stopped);
+        nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+        for (const ObservableRow& r : c.rows) {
+            nlohmann::ordered_json row;
+            row["path"] = r.path;
+            row["name"] = r.name;
+            row["exact"] = optional_number(r.exact);
+            row["impulse"] = optional_number(r.impulse);
+            row["box2d"] = optional_number(r.box2d);
+            row["impulse_error"] = optional_number(difference(r.impulse, r.exact));
+            row["box2d_error"] = optional_number(difference(r.box2d, r.exact));
+            row["difference"] = optional_number(difference(r.box2d, r.impulse));
+            row["tolerance"] = optional_number(r.tolerance);
+            row["within"] = r.within;
+            row["note"] = r.note;
+            rows.push_back(std::move(row));
+        }
+        scene["rows"] = std::move(rows);
+        scenes.push_back(std::move(scene));
+    }
+    nlohmann::ordered_json document;
+    document["schema"] = "impulse/box2d-comparison@1";
+    document["impulse_integrator"] = options.scene_integrator ? "scene" : "symplectic-euler";
+    document["scenes"] = std::move(scenes);
+    return document.dump(2) + "\n";
+}
+#endif // IMPULSE_WITH_BOX2D
+
+} // namespace
+
+int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    const Arguments a = parse_arguments(
+        args, {"--root", "--dt", "--substeps", "--velocity-iterations", "--position-iterations"},
+        {"--help", "--json", "--scene-integrator"});
+    if (a.has_flag("--help")) {
+        out << box2d_help;
+        return exit_ok;
+    }
+    Options options;
+    if (const auto dt = a.option("--dt")) {
+        options.dt = positive_seconds("--dt", *dt);
+    }
+    if (const auto n = a.option("--substeps")) {
+        options.substeps = parse_count("--substeps", *n);
+    }
+    if (const auto n = a.option("--velocity-iterations")) {
+        options.velocity_iterations = parse_count("--velocity-iterations", *n);
+    }
+    if (const auto n = a.option("--position-iterations")) {
+        options.position_iterations = parse_count("--position-iterations", *n);
+    }
+    options.scene_integrator = a.has_flag("--scene-integrator");
+#ifndef IMPULSE_WITH_BOX2D
+    (void)out;
+    err << "impulse box2d: this build has no Box2D (configured with IMPULSE_WITH_BOX2D=OFF); "
+           "install libbox2d-dev and configure with -DIMPULSE_WITH_BOX2D=ON to use it\n";
+    return exit_bad_input;
+#else
+    GateRoot root;
+    root.root = a.option("--root").value_or(".");
+    std::vector<std::string> paths;
+    if (a.positional.empty()) {
+        paths = canonical_scenes(root);
+    } else {
+        for (const std::string& argument : a.positional) {
+            paths.push_back(resolve_scene(root, argument));
+        }
+    }
+    // Everything is computed before anything is written: a bad scene or a
+    // shape Box2D cannot take is one sentence on stderr, with no half output.
+    std::vector<Comparison> comparisons;
+    for (const std::string& path : paths) {
+        comparisons.push_back(compare_scene(path, options));
+    }
+    for (const Comparison& c : comparisons) {
+        for (const std::string& warning : c.warnings) {
+            err << "warning: " << warning << "\n";
+        }
+    }
+    if (a.has_flag("--json")) {
+        out << write_json(comparisons, options);
+    } else {
+        write_text(out, comparisons, options);
+    }
+    const bool all_passed = std::all_of(comparisons.begin(), comparisons.end(),
+                                        [](const Comparison& c) { return c.passed(); });
+    return all_passed ? exit_ok : exit_failed;
+#endif
+}
+
+} // namespace impulse::harness::cli

@@ -1,0 +1,461 @@
+// The exact answers of PHYSICS.md and when they apply (see exact_answers.h).
+#include "exact_answers.h"
+
+#include "manifold.h"
+#include "rotation.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+
+namespace impulse::harness {
+
+namespace {
+
+// Shortest text that reads back to the same double, as the loader quotes
+// values: a refusal becomes one of its messages.
+std::string number_text(double value) {
+    char buffer[32];
+    const std::to_chars_result result = std::to_chars(buffer, buffer + sizeof buffer, value);
+    return std::string(buffer, result.ptr);
+}
+
+std::string vec2_text(Vec2 v) {
+    return "(" + number_text(v.x) + ", " + number_text(v.y) + ")";
+}
+
+std::string quoted(const std::string& name) {
+    return "'" + name + "'";
+}
+
+Transform initial_transform(const SceneBody& body) {
+    return {body.position, rotation_of(body.angle)};
+}
+
+Refusal refuse(Refusal::Where where, std::string message) {
+    return {where, std::move(message)};
+}
+
+// Gravity (0, -g): the formulas are written for ground below and g >= 0.
+std::optional<Refusal> gravity_refusal(const Scene& scene, const std::string& formula,
+                                       bool allow_zero) {
+    const Vec2 g = scene.gravity;
+    const bool downward = g.x == 0.0 && (allow_zero ? g.y <= 0.0 : g.y < 0.0);
+    if (downward) {
+        return std::nullopt;
+    }
+    return refuse(Refusal::Where::entry, formula + " needs gravity (0, -g) with g " +
+                                             (allow_zero ? ">=" : ">") +
+                                             " 0, but the scene's gravity is " + vec2_text(g));
+}
+
+std::optional<Refusal> gap_refusal(const Scene& scene, const SceneBody& body,
+                                   const std::string& formula) {
+    const std::optional<double> gap = gap_to_static_ground(scene, body);
+    if (!gap) {
+        return refuse(Refusal::Where::body, formula + " needs static ground for " +
+                                                quoted(body.name) +
+                                                " to fall on, but every body is dynamic");
+    }
+    if (!(*gap > 0.0)) {
+        return refuse(Refusal::Where::body, formula + " needs a gap between " + quoted(body.name) +
+                                                " and the static ground at t = 0, but it "
+                                                "touches it");
+    }
+    return std::nullopt;
+}
+
+std::optional<std::size_t> column_index(const Trajectory& trajectory, const std::string& name) {
+    const auto it = std::find(trajectory.columns.begin(), trajectory.columns.end(), name);
+    if (it == trajectory.columns.end()) {
+        return std::nullopt;
+    }
+    return static_cast<std::size_t>(it - trajectory.columns.begin());
+}
+
+} // namespace
+
+// ---------------------------------------------------------------- the scene at t = 0
+
+double gravity_magnitude(const Scene& scene) {
+    return -scene.gravity.y;
+}
+
+std::optional<double> gap_to_static_ground(const Scene& scene, const SceneBody& body) {
+    std::optional<double> gap;
+    for (const SceneBody& ground : scene.bodies) {
+        if (ground.is_static) {
+            const double g = separation(body.shape, initial_transform(body), ground.shape,
+                                        initial_transform(ground));
+            gap = gap ? std::min(*gap, g) : g;
+        }
+    }
+    return gap;
+}
+
+std::vector<Vec2> world_vertices(const SceneBody& body) {
+    const Transform xf = initial_transform(body);
+    std::vector<Vec2> out;
+    for (int i = 0; i < body.shape.polygon.count; ++i) {
+        out.push_back(apply(xf, body.shape.polygon.vertices[static_cast<std::size_t>(i)]));
+    }
+    return out;
+}
+
+bool lands_on_corner_below_centre(const SceneBody& body) {
+    const std::vector<Vec2> corners = world_vertices(body);
+    std::vector<Vec2> by_height = corners;
+    std::sort(by_height.begin(), by_height.end(), [](Vec2 a, Vec2 b) { return a.y < b.y; });
+    double size = 0.0;
+    for (const Vec2 c : corners) {
+        size = std::max(size, length(c - body.position));
+    }
+    return by_height[1].y - by_height[0].y >= level_corners &&
+           std::abs(by_height[0].x - body.position.x) <= 1e-12 * size;
+}
+
+bool has_face_along(const SceneBody& body, Vec2 u) {
+    if (body.shape.type != ShapeType::polygon) {
+        return false;
+    }
+    const Rotation q = rotation_of(body.angle);
+    for (int i = 0; i < body.shape.polygon.count; ++i) {
+        const Vec2 n = rotate(q, body.shape.polygon.normals[static_cast<std::size_t>(i)]);
+        if (std::abs(cross(n, u)) <= parallel_tolerance) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// ---------------------------------------------------------------- when a formula applies
+
+std::optional<Refusal> drop_refusal(const Scene& scene, const SceneBody& body,
+                                    const std::string& formula) {
+    if (std::optional<Refusal> gravity = gravity_refusal(scene, formula, false)) {
+        return gravity;
+    }
+    const std::string name = quoted(body.name);
+    if (body.velocity != Vec2{}) {
+        return refuse(Refusal::Where::body, formula + " needs the body at rest at t = 0, but " +
+                                                name + " has velocity " + vec2_text(body.velocity));
+    }
+    if (body.angular_velocity != 0.0) {
+        return refuse(Refusal::Where::body, formula + " needs the body at rest at t = 0, but " +
+                                                name + " has angular velocity " +
+                                                number_text(body.angular_velocity) + " rad/s");
+    }
+    // A free polygon lands on one corner first (the seed's single contact) and
+    // starts to spin, unless that corner is straight below its centre; a disc
+    // (impulse through its centre) and a non-rotating body bounce straight.
+    if (body.shape.type == ShapeType::polygon && body.rotation &&
+        !lands_on_corner_below_centre(body)) {
+        return refuse(Refusal::Where::body,
+                      formula + " has no rotation, but " + name +
+                          " is a polygon free to rotate that does not land on one corner below "
+                          "its centre; give it \"rotation\": false");
+    }
+    return gap_refusal(scene, body, formula);
+}
+
+std::optional<Refusal> corner_impact_refusal(const Scene& scene, const SceneBody& body,
+                                             const std::string& formula) {
+    const std::string name = quoted(body.name);
+    if (body.shape.type != ShapeType::polygon) {
+        return refuse(Refusal::Where::body,
+                      formula + " needs a polygon, but " + name + " is a circle");
+    }
+    if (!body.rotation) {
+        return refuse(Refusal::Where::body, formula + " needs a body free to rotate, but " + name +
+                                                " has \"rotation\": false");
+    }
+    if (body.angular_velocity != 0.0) {
+        return refuse(Refusal::Where::body, formula + " needs angular velocity 0 at t = 0, but " +
+                                                name + " has " +
+                                                number_text(body.angular_velocity) + " rad/s");
+    }
+    if (std::optional<Refusal> gravity = gravity_refusal(scene, formula, true)) {
+        return gravity;
+    }
+    std::vector<double> heights;
+    for (const Vec2 v : world_vertices(body)) {
+        heights.push_back(v.y);
+    }
+    std::sort(heights.begin(), heights.end());
+    if (!(heights[1] - heights[0] >= level_corners)) {
+        return refuse(Refusal::Where::body, formula + " needs one lowest corner, but " + name +
+                                                " has two corners within " +
+                                                number_text(level_corners) +
+                                                " m of the same height (a flat landing)");
+    }
+    if (std::optional<Refusal> gap = gap_refusal(scene, body, formula)) {
+        return gap;
+    }
+    if (scene.gravity.y == 0.0 && !(body.velocity.y < 0.0)) {
+        return refuse(Refusal::Where::body, formula +
+                                                " without gravity needs the body moving down, "
+                                                "but " +
+                                                name + " has vy = " + number_text(body.velocity.y));
+    }
+    return std::nullopt;
+}
+
+std::optional<Refusal> head_on_refusal(const Scene& scene, const SceneBody& a, const SceneBody& b,
+                                       const std::string& formula) {
+    if (a.name == b.name) {
+        return refuse(Refusal::Where::other, formula +
+                                                 " needs two distinct bodies, but a and b are "
+                                                 "both '" +
+                                                 a.name + "'");
+    }
+    if (scene.gravity != Vec2{}) {
+        return refuse(Refusal::Where::entry, formula +
+                                                 " needs zero gravity, but the scene's gravity "
+                                                 "is " +
+                                                 vec2_text(scene.gravity));
+    }
+    // An impulse through both centres turns neither body; for a free polygon
+    // the seed's single contact point is a corner, off the line of centres.
+    for (const auto& [body, where] :
+         {std::pair{&a, Refusal::Where::body}, std::pair{&b, Refusal::Where::other}}) {
+        if (body->shape.type == ShapeType::polygon && body->rotation) {
+            return refuse(where, formula + " has no rotation, but '" + body->name +
+                                     "' is a polygon free to rotate; give it \"rotation\": "
+                                     "false");
+        }
+    }
+    const Vec2 line = b.position - a.position;
+    const Vec2 u = (1.0 / length(line)) * line;
+    const Vec2 relative = a.velocity - b.velocity;
+    const double closing = dot(relative, u);
+    const std::string pair = quoted(a.name) + " and " + quoted(b.name);
+    if (!(closing > 0.0)) {
+        return refuse(Refusal::Where::entry,
+                      formula + " needs " + pair +
+                          " approaching along the line of their centres, but their closing "
+                          "speed is " +
+                          number_text(closing) + " m/s");
+    }
+    if (std::abs(cross(u, relative)) > parallel_tolerance * length(relative)) {
+        return refuse(Refusal::Where::entry,
+                      formula + " needs " + pair +
+                          " approaching along the line of their centres, but their relative "
+                          "velocity " +
+                          vec2_text(relative) + " is not along " + vec2_text(u));
+    }
+    const bool polygons = a.shape.type == ShapeType::polygon || b.shape.type == ShapeType::polygon;
+    if (polygons && !has_face_along(a, u) && !has_face_along(b, u)) {
+        return refuse(Refusal::Where::entry, formula +
+                                                 " needs the contact normal along the line of "
+                                                 "centres " +
+                                                 vec2_text(u) + ", but no face of " + pair +
+                                                 " is perpendicular to it");
+    }
+    return std::nullopt;
+}
+
+std::optional<std::string> conservation_refusal(const Scene& scene, const std::string& quantity) {
+    if (quantity == "energy") {
+        if (scene.restitution != 1.0) {
+            return "energy is conserved only with restitution 1, but the scene's is " +
+                   number_text(scene.restitution);
+        }
+        return std::nullopt;
+    }
+    const std::string what = quantity == "momentum" ? "momentum" : "angular momentum";
+    if (scene.gravity != Vec2{}) {
+        return what + " is conserved only in free space, but the scene's gravity is " +
+               vec2_text(scene.gravity);
+    }
+    for (const SceneBody& body : scene.bodies) {
+        if (body.is_static) {
+            return what + " is conserved only in free space, but '" + body.name +
+                   "' is static and takes up " + what + " in a collision";
+        }
+    }
+    return std::nullopt;
+}
+
+// ---------------------------------------------------------------- the formulas
+
+double DropLadder::v1() const {
+    return std::sqrt(2.0 * g * h0);
+}
+
+double DropLadder::t1() const {
+    return v1() / g;
+}
+
+double DropLadder::e_to(int n) const {
+    double out = 1.0;
+    for (int k = 0; k < n; ++k) {
+        out *= e;
+    }
+    return out;
+}
+
+double DropLadder::impact_time(int n) const {
+    double t = t1();
+    for (int k = 1; k < n; ++k) {
+        t += 2.0 * e_to(k) * v1() / g;
+    }
+    return t;
+}
+
+double DropLadder::rebound_speed(int n) const {
+    return e_to(n) * v1();
+}
+
+double DropLadder::apex_gap(int n) const {
+    return e_to(2 * n) * h0;
+}
+
+std::optional<DropLadder> drop_ladder(const Scene& scene, const SceneBody& body) {
+    const std::optional<double> h0 = gap_to_static_ground(scene, body);
+    if (!h0) {
+        return std::nullopt;
+    }
+    return DropLadder{*h0, gravity_magnitude(scene), scene.restitution};
+}
+
+namespace {
+
+// The smallest t > 0 with h + vy0 t - g t^2 / 2 = 0. Of the two forms of the
+// root the one without cancellation is used: 2 h / (s - vy0) when falling
+// (it also covers g = 0, t = h / -vy0), (vy0 + s) / g when thrown up.
+double time_to_fall(double h, double vy0, double g, double s) {
+    return vy0 < 0.0 ? 2.0 * h / (s - vy0) : (vy0 + s) / g;
+}
+
+} // namespace
+
+CornerImpact corner_impact(const Scene& scene, const SceneBody& body, double h) {
+    const Rotation q = rotation_of(body.angle);
+    const Polygon& polygon = body.shape.polygon;
+    Vec2 lowest = rotate(q, polygon.vertices[0]);
+    for (int i = 1; i < polygon.count; ++i) {
+        const Vec2 v = rotate(q, polygon.vertices[static_cast<std::size_t>(i)]);
+        if (v.y < lowest.y) {
+            lowest = v;
+        }
+    }
+    const double g = gravity_magnitude(scene);
+    const double e = scene.restitution;
+    const double vy0 = body.velocity.y;
+    CornerImpact c;
+    // Falling h from vy0: v^2 = vy0^2 + 2 g h.
+    c.v = std::sqrt(vy0 * vy0 + 2.0 * g * h);
+    c.t_hit = time_to_fall(h, vy0, g, c.v);
+    c.rx = lowest.x;
+    const double drift = body.velocity.x * c.t_hit;
+    c.point_x = body.position.x + drift + c.rx;
+    c.point_scale = std::abs(body.position.x) + std::abs(drift) + std::abs(c.rx);
+    c.j = (1.0 + e) * c.v / (1.0 / body.mass + c.rx * c.rx / body.inertia);
+    c.vy_after = -c.v + c.j / body.mass;
+    c.w_after = c.rx * c.j / body.inertia;
+    return c;
+}
+
+HeadOn head_on(const Scene& scene, const SceneBody& a, const SceneBody& b) {
+    HeadOn h;
+    const Vec2 line = b.position - a.position;
+    h.u = (1.0 / length(line)) * line;
+    h.va = dot(a.velocity, h.u);
+    h.vb = dot(b.velocity, h.u);
+    h.pa = dot(a.velocity, perp(h.u));
+    h.pb = dot(b.velocity, perp(h.u));
+    const double ma = a.mass, mb = b.mass, e = scene.restitution;
+    const double closing = h.va - h.vb;
+    const double total = ma + mb;
+    const double momentum = ma * std::abs(h.va) + mb * std::abs(h.vb);
+    h.va_after = {(ma * h.va + mb * h.vb - mb * e * closing) / total,
+                  (momentum + mb * e * std::abs(closing)) / total};
+    h.vb_after = {(ma * h.va + mb * h.vb + ma * e * closing) / total,
+                  (momentum + ma * e * std::abs(closing)) / total};
+    h.j = plain(ma * mb * (1.0 + e) * closing / total);
+    return h;
+}
+
+// ---------------------------------------------------------------- reading a trajectory
+
+std::optional<BodyColumns> body_columns(const Trajectory& trajectory, const std::string& body) {
+    std::size_t found[6] = {};
+    const char* suffixes[6] = {".x", ".y", ".angle", ".vx", ".vy", ".omega"};
+    for (std::size_t i = 0; i < 6; ++i) {
+        const std::optional<std::size_t> index = column_index(trajectory, body + suffixes[i]);
+        if (!index) {
+            return std::nullopt;
+        }
+        found[i] = *index;
+    }
+    return BodyColumns{found[0], found[1], found[2], found[3], found[4], found[5]};
+}
+
+double value_at(const std::vector<double>& frame, std::size_t column) {
+    return column < frame.size() ? frame[column] : std::numeric_limits<double>::quiet_NaN();
+}
+
+double frame_time(const std::vector<double>& frame) {
+    return value_at(frame, 0);
+}
+
+Motion motion_in(const std::vector<double>& frame, const BodyColumns& c) {
+    return {{value_at(frame, c.x), value_at(frame, c.y)},
+            value_at(frame, c.angle),
+            {value_at(frame, c.vx), value_at(frame, c.vy)},
+            value_at(frame, c.omega)};
+}
+
+bool involves(const TrajectoryEvent& event, const std::string& body) {
+    return event.a == body || event.b == body;
+}
+
+std::vector<std::size_t> events_of(const Trajectory& trajectory, const std::string& body) {
+    std::vector<std::size_t> out;
+    for (std::size_t i = 0; i < trajectory.events.size(); ++i) {
+        if (involves(trajectory.events[i], body)) {
+            out.push_back(i);
+        }
+    }
+    return out;
+}
+
+std::optional<std::vector<Mass>> masses_of(const Scene& scene, const Trajectory& trajectory,
+                                           std::string& missing) {
+    std::vector<Mass> masses;
+    for (const SceneBody& body : scene.bodies) {
+        if (body.is_static) {
+            continue;
+        }
+        const std::optional<BodyColumns> columns = body_columns(trajectory, body.name);
+        if (!columns) {
+            missing = body.name;
+            return std::nullopt;
+        }
+        masses.push_back({&body, *columns, body.rotation ? body.inertia : 0.0});
+    }
+    return masses;
+}
+
+Totals totals_in(const std::vector<double>& frame, const std::vector<Mass>& masses, Vec2 gravity) {
+    Totals t;
+    for (const Mass& m : masses) {
+        const Motion s = motion_in(frame, m.columns);
+        const double mass = m.body->mass;
+        t.momentum += mass * s.velocity;
+        t.momentum_scale += mass * length(s.velocity);
+        const double orbital = mass * cross(s.position, s.velocity);
+        const double spin = m.inertia * s.omega;
+        t.angular_momentum += orbital + spin;
+        t.angular_momentum_scale += std::abs(orbital) + std::abs(spin);
+        const double kinetic =
+            0.5 * mass * length_squared(s.velocity) + 0.5 * m.inertia * s.omega * s.omega;
+        const double potential = -mass * dot(gravity, s.position);
+        t.energy += kinetic + potential;
+        t.energy_scale += kinetic + std::abs(potential);
+    }
+    return t;
+}
+
+} // namespace impulse::harness

@@ -1,0 +1,217 @@
+#include "strict_json.h"
+
+#include "input_error.h"
+
+#include <algorithm>
+#include <optional>
+#include <set>
+#include <vector>
+
+namespace impulse::harness {
+
+namespace {
+
+// A file committed in the middle of a merge must say so, not "invalid JSON".
+void reject_merge_conflict_markers(const std::string& text, const std::string& file) {
+    std::size_t line = 1;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        for (const char* marker : {"<<<<<<<", "=======", ">>>>>>>"}) {
+            if (text.compare(start, 7, marker) == 0) {
+                throw InputError(file, "",
+                                 "has a merge-conflict marker at line " + std::to_string(line) +
+                                     "; resolve the conflict or regenerate the file");
+            }
+        }
+        const std::size_t end = text.find('\n', start);
+        if (end == std::string::npos) {
+            break;
+        }
+        start = end + 1;
+        ++line;
+    }
+}
+
+// Counts brackets outside strings, so a pathological file ("[[[[...") is
+// refused instead of exhausting the stack.
+void reject_deep_nesting(const std::string& text, const std::string& file) {
+    int depth = 0;
+    bool in_string = false;
+    bool escaped = false;
+    for (const char c : text) {
+        if (in_string) {
+            if (escaped) {
+                escaped = false;
+            } else if (c == '\\') {
+                escaped = true;
+            } else if (c == '"') {
+                in_string = false;
+            }
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > max_json_nesting) {
+                throw InputError(file, "",
+                                 "is nested too deeply: more than " +
+                                     std::to_string(max_json_nesting) +
+                                     " levels of arrays and objects");
+            }
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+}
+
+// nlohmann's message, e.g. "[json.exception.parse_error.101] parse error at
+// line 1, column 10: syntax error while parsing value - invalid literal; last
+// read: '"a": tru}'", cut to "line 1, column 10: invalid literal while parsing
+// value". The "last read" excerpt is dropped: it repeats raw file bytes, which
+// may be control characters or broken UTF-8.
+std::string shorten_parse_error(std::string message) {
+    const std::size_t tag_end = message.find("] ");
+    if (message.rfind("[json.exception.", 0) == 0 && tag_end != std::string::npos) {
+        message.erase(0, tag_end + 2);
+    }
+    if (message.rfind("parse error at ", 0) == 0) {
+        message.erase(0, std::string("parse error at ").size());
+    }
+    const std::string last_read = "; last read: '";
+    const std::size_t excerpt = message.find(last_read);
+    if (excerpt != std::string::npos) {
+        const std::size_t expected = message.rfind("'; expected ");
+        const std::size_t cut_end =
+            expected != std::string::npos && expected >= excerpt + last_read.size()
+                ? expected + 1
+                : message.size();
+        message.erase(excerpt, cut_end - excerpt);
+    }
+    // "syntax error while parsing X - REASON" reads better as "REASON while parsing X".
+    const std::string syntax = "syntax error while parsing ";
+    const std::size_t where = message.find(syntax);
+    if (where != std::string::npos) {
+        const std::size_t dash = message.find(" - ", where);
+        if (dash != std::string::npos) {
+            const std::size_t reason_end = std::min(message.find("; ", dash), message.size());
+            const std::string what =
+                message.substr(where + syntax.size(), dash - where - syntax.size());
+            const std::string reason = message.substr(dash + 3, reason_end - dash - 3);
+            message.replace(where, reason_end - where, reason + " while parsing " + what);
+        }
+    }
+    for (char& c : message) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte < 0x20 || byte >= 0x7f) {
+            c = '?';
+        }
+    }
+    return message;
+}
+
+// Follows the parser's events to know the JSON path of every key, so that a
+// repeated key is reported where it is. Only the first repeat is kept: it is
+// the first in the document.
+class DuplicateKeyFinder {
+  public:
+    template <class Json> bool on_event(nlohmann::json::parse_event_t event, const Json& parsed) {
+        using Event = nlohmann::json::parse_event_t;
+        switch (event) {
+        case Event::object_start:
+            open_.push_back({path_of_next_value(), true, {}, {}, 0});
+            break;
+        case Event::array_start:
+            open_.push_back({path_of_next_value(), false, {}, {}, 0});
+            break;
+        case Event::key: {
+            Container& object = open_.back();
+            object.key = parsed.template get<std::string>(); // a key event always carries a string
+            if (!object.keys.insert(object.key).second && !first_duplicate_) {
+                first_duplicate_ = json_member_path(object.path, object.key);
+            }
+            break;
+        }
+        case Event::object_end:
+        case Event::array_end:
+            open_.pop_back();
+            value_done();
+            break;
+        case Event::value:
+            value_done();
+            break;
+        }
+        return true;
+    }
+
+    const std::optional<std::string>& first_duplicate() const { return first_duplicate_; }
+
+  private:
+    struct Container {
+        std::string path;
+        bool is_object;
+        std::set<std::string> keys;
+        std::string key;   // objects: the key whose value comes next
+        std::size_t index; // arrays: the index of the value that comes next
+    };
+
+    std::string path_of_next_value() const {
+        if (open_.empty()) {
+            return "";
+        }
+        const Container& parent = open_.back();
+        return parent.is_object ? json_member_path(parent.path, parent.key)
+                                : json_element_path(parent.path, parent.index);
+    }
+
+    void value_done() {
+        if (!open_.empty() && !open_.back().is_object) {
+            ++open_.back().index;
+        }
+    }
+
+    std::vector<Container> open_;
+    std::optional<std::string> first_duplicate_;
+};
+
+bool is_plain_key_char(char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+}
+
+} // namespace
+
+std::string json_member_path(const std::string& parent, const std::string& key) {
+    const bool plain = !key.empty() && std::all_of(key.begin(), key.end(), is_plain_key_char);
+    if (!plain) {
+        return parent + "[" + nlohmann::json(key).dump() + "]";
+    }
+    return parent.empty() ? key : parent + "." + key;
+}
+
+std::string json_element_path(const std::string& parent, std::size_t index) {
+    return parent + "[" + std::to_string(index) + "]";
+}
+
+template <class Json> Json parse_strict_json(const std::string& text, const std::string& file) {
+    reject_merge_conflict_markers(text, file);
+    reject_deep_nesting(text, file);
+    DuplicateKeyFinder finder;
+    Json document;
+    try {
+        document =
+            Json::parse(text, [&finder](int, nlohmann::json::parse_event_t event, Json& parsed) {
+                return finder.on_event(event, parsed);
+            });
+    } catch (const nlohmann::json::exception& error) {
+        // parse_error for syntax, out_of_range for a number too large for a double.
+        throw InputError(file, "", "not valid JSON: " + shorten_parse_error(error.what()));
+    }
+    if (finder.first_duplicate()) {
+        throw InputError(file, *finder.first_duplicate(),
+                         "appears more than once in the same object; keys must be unique");
+    }
+    return document;
+}
+
+template nlohmann::json parse_strict_json<nlohmann::json>(const std::string&, const std::string&);
+template nlohmann::ordered_json parse_strict_json<nlohmann::ordered_json>(const std::string&,
+                                                                          const std::string&);
+
+} // namespace impulse::harness

@@ -1,0 +1,27 @@
+// JSON as the harness reads it from scenes, trajectories and goldens: a file
+// that is wrong says how, in one sentence, and never crashes the reader.
+#pragma once
+
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace impulse::harness {
+
+// Deeper files are refused before nlohmann's recursive parser sees them.
+inline constexpr int max_json_nesting = 64;
+
+// Parses `text`, throwing InputError naming `file` for: a merge-conflict
+// marker (with its line), nesting deeper than max_json_nesting, a syntax error
+// or a number too large for a double (nlohmann's position and reason,
+// shortened), and a key repeated in one object (with its JSON path), which
+// nlohmann would otherwise resolve silently by keeping one value. Json is
+// nlohmann::json or nlohmann::ordered_json.
+template <class Json> Json parse_strict_json(const std::string& text, const std::string& file);
+
+// JSON paths as messages print them: `parent.key`, or `parent["odd key"]` for
+// keys that are not plain identifiers, and `parent[3]`.
+std::string json_member_path(const std::string& parent, const std::string& key);
+std::string json_element_path(const std::string& parent, std::size_t index);
+
+} // namespace impulse::harness
