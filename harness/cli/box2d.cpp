@@ -2,6 +2,7 @@
 // impulse engine and in Box2D with friction off (box2d_simulator.h) and
 // compares the observables the scene's "box2d" block names (observables.h),
 // each against the exact answer of PHYSICS.md where there is one.
+#include "atomic_file.h"
 #include "box2d_simulator.h"
 #include "cli.h"
 #include "gate.h"
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -46,6 +48,8 @@ runs are compared up to its last complete step, and the output says so.
 
   --root DIR                   where harness/scenes/ is (default: .)
   --json                       the comparison as JSON, for scripts
+  --out DIR                    also write both runs as trajectories, DIR/NAME.impulse.json
+                               and DIR/NAME.box2d.json, for impulse diff and render
   --dt S                       time step of both runs, in seconds
   --substeps N                 Box2D steps per scene step (scene's box2d.substeps, default 1)
   --velocity-iterations N      Box2D's velocity iterations (default 8)
@@ -95,6 +99,9 @@ struct Comparison {
     std::vector<std::string> warnings;
     std::string stopped; // why and where the comparison ends early, when it does
     std::vector<ObservableRow> rows;
+    // Both runs, as compared, for --out (so impulse diff and render work on them).
+    std::optional<Trajectory> impulse_run;
+    std::optional<Trajectory> box2d_run;
 
     std::size_t outside() const {
         return static_cast<std::size_t>(std::count_if(
@@ -197,6 +204,8 @@ Comparison compare_scene(const std::string& path, const Options& options) {
     c.box2d_engine = box2d.engine;
     c.warnings.insert(c.warnings.end(), warnings.begin(), warnings.end());
     c.rows = compare_observables(box2d_scene, impulse, box2d);
+    c.impulse_run = std::move(impulse);
+    c.box2d_run = std::move(box2d);
     return c;
 }
 
@@ -377,7 +386,8 @@ std::string write_json(const std::vector<Comparison>& comparisons, const Options
 
 int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
     const Arguments a = parse_arguments(
-        args, {"--root", "--dt", "--substeps", "--velocity-iterations", "--position-iterations"},
+        args,
+        {"--root", "--out", "--dt", "--substeps", "--velocity-iterations", "--position-iterations"},
         {"--help", "--json", "--scene-integrator"});
     if (a.has_flag("--help")) {
         out << box2d_help;
@@ -422,6 +432,19 @@ int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
     for (const Comparison& c : comparisons) {
         for (const std::string& warning : c.warnings) {
             err << "warning: " << warning << "\n";
+        }
+    }
+    if (const auto dir = a.option("--out")) {
+        std::error_code error;
+        std::filesystem::create_directories(*dir, error);
+        for (const Comparison& c : comparisons) {
+            if (c.impulse_run && c.box2d_run) {
+                const std::filesystem::path base = std::filesystem::path(*dir) / c.name;
+                write_file_atomically(base.string() + ".impulse.json",
+                                      write_trajectory(*c.impulse_run));
+                write_file_atomically(base.string() + ".box2d.json",
+                                      write_trajectory(*c.box2d_run));
+            }
         }
     }
     if (a.has_flag("--json")) {
