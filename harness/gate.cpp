@@ -140,6 +140,18 @@ std::string resolve_scene(const GateRoot& root, const std::string& argument) {
     return (fs::path(root.scenes_dir()) / (argument + ".json")).string();
 }
 
+std::vector<std::string> scenes_named(const GateRoot& root,
+                                      const std::vector<std::string>& arguments) {
+    if (arguments.empty()) {
+        return canonical_scenes(root);
+    }
+    std::vector<std::string> paths;
+    for (const std::string& argument : arguments) {
+        paths.push_back(resolve_scene(root, argument));
+    }
+    return paths;
+}
+
 std::vector<std::string> unreferenced_goldens(const GateRoot& root) {
     std::vector<std::string> names;
     for (const std::string& path : canonical_scenes(root)) {

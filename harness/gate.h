@@ -27,6 +27,10 @@ std::vector<std::string> canonical_scenes(const GateRoot& root);
 // A scene argument is a path when it names an existing file or ends in .json,
 // otherwise the name of a canonical scene.
 std::string resolve_scene(const GateRoot& root, const std::string& argument);
+// The scene files a verb works on: every canonical scene when no argument
+// names one, otherwise each argument resolved as above.
+std::vector<std::string> scenes_named(const GateRoot& root,
+                                      const std::vector<std::string>& arguments);
 // Goldens with no canonical scene of their name.
 std::vector<std::string> unreferenced_goldens(const GateRoot& root);
 

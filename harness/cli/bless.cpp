@@ -41,14 +41,7 @@ int bless_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
     }
     GateRoot root;
     root.root = a.option("--root").value_or(".");
-    std::vector<std::string> paths;
-    if (a.positional.empty()) {
-        paths = canonical_scenes(root);
-    } else {
-        for (const std::string& argument : a.positional) {
-            paths.push_back(resolve_scene(root, argument));
-        }
-    }
+    std::vector<std::string> paths = scenes_named(root, a.positional);
 
     int created = 0, changed = 0, unchanged = 0, refused = 0, removed = 0, broken = 0;
     for (const std::string& path : paths) {

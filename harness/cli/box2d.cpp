@@ -415,14 +415,7 @@ int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
 #else
     GateRoot root;
     root.root = a.option("--root").value_or(".");
-    std::vector<std::string> paths;
-    if (a.positional.empty()) {
-        paths = canonical_scenes(root);
-    } else {
-        for (const std::string& argument : a.positional) {
-            paths.push_back(resolve_scene(root, argument));
-        }
-    }
+    std::vector<std::string> paths = scenes_named(root, a.positional);
     // Everything is computed before anything is written: a bad scene or a
     // shape Box2D cannot take is one sentence on stderr, with no half output.
     std::vector<Comparison> comparisons;

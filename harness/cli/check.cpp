@@ -121,14 +121,7 @@ int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostr
         options.jobs = parse_count("--jobs", *jobs, 1);
     }
     const bool all = a.positional.empty();
-    std::vector<std::string> paths;
-    if (all) {
-        paths = canonical_scenes(root);
-    } else {
-        for (const std::string& argument : a.positional) {
-            paths.push_back(resolve_scene(root, argument));
-        }
-    }
+    std::vector<std::string> paths = scenes_named(root, a.positional);
     if (const auto spec = a.option("--shard")) {
         const auto [k, n] = parse_shard(*spec);
         paths = shard(paths, k, n);
