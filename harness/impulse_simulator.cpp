@@ -57,6 +57,8 @@ class ImpulseSimulator final : public Simulator {
         }
     }
 
+    WorkCounters work() const override { return world_.work; }
+
     BodyState state(int index) const override { return world_.bodies[index].state; }
 
     std::vector<TrajectoryEvent> take_events() override {

@@ -6,6 +6,7 @@
 #include "body.h"
 #include "scene.h"
 #include "trajectory.h"
+#include "world.h"
 
 #include <memory>
 #include <string>
@@ -27,6 +28,9 @@ class Simulator {
     virtual BodyState state(int index) const = 0;
     // Collisions resolved since the last call, in order.
     virtual std::vector<TrajectoryEvent> take_events() = 0;
+    // Machine-independent work done so far (steps, narrow-phase queries,
+    // time-of-impact iterations); zeros for a simulator that does not count.
+    virtual WorkCounters work() const { return {}; }
 };
 
 std::unique_ptr<Simulator> make_impulse_simulator(const Scene& scene);

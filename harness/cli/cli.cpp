@@ -24,6 +24,8 @@ verbs:
   box2d [SCENE...]   run scenes in Box2D with friction off and compare observables
   render SCENE|TRAJECTORY
                      an SVG picture of the motion
+  sweep SCENE        the speed/accuracy trade: error against cost over a grid of
+                     solver settings, impulse and Box2D
 
 options:
   --help       this text; 'impulse <verb> --help' describes one verb
@@ -124,6 +126,9 @@ int main(int argc, char** argv) {
         }
         if (verb == "render") {
             return render_verb(rest, out, err);
+        }
+        if (verb == "sweep") {
+            return sweep_verb(rest, out, err);
         }
         err << "impulse: unknown verb '" << verb << "'; see 'impulse --help'\n";
         return exit_bad_input;

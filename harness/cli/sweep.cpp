@@ -1,0 +1,517 @@
+// `impulse sweep SCENE`: the speed/accuracy trade (harness/sweep.h) as a
+// table, JSON, CSV and an SVG plot of error against cost.
+#include "sweep.h"
+
+#include "atomic_file.h"
+#include "cli.h"
+#include "gate.h"
+#include "input_error.h"
+#include "number_format.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace impulse::harness::cli {
+
+namespace {
+
+constexpr const char* sweep_help =
+    R"(usage: impulse sweep SCENE [options]
+
+The speed/accuracy trade on one scene: runs a grid of impulse settings (time
+step x integrator x time-of-impact method x toi_tolerance) and of Box2D
+settings (time step x sub-steps x iterations) and measures each point's
+
+  error  against the exact answers the scene declares (drop, corner-impact,
+         head-on: the largest |actual - expected| / max(|expected|, 1e-9));
+         where it declares none, against a reference run at the finest
+         settings (impulse rk4, the finest dt / 4, secant, toi_tolerance 1e-14):
+         the largest relative difference of the final frame's state
+  cost   wall time (steady clock) per simulated second, median of the repeats
+         and its spread (max - min), plus deterministic work counters: steps,
+         narrow-phase queries, time-of-impact iterations
+
+and marks each method family's Pareto front (impulse per integrator/toi
+method, and Box2D). A grid point the engine refuses (a Zeno cascade, a resting
+contact) is reported as failed with its reason. SCENE is a path or the name of
+a canonical scene under ROOT/harness/scenes/.
+
+  --dt LIST                 time steps in seconds (default 1/30,1/60,...,1/960)
+  --integrator LIST         euler,symplectic-euler,verlet,rk4 (default all)
+  --toi LIST                bisection,secant (default both)
+  --toi-tolerance LIST      seconds (default 1e-6,1e-9,1e-12)
+  --box2d-substeps LIST     Box2D steps per scene step (default 1,4)
+  --box2d-iterations LIST   velocity/position iterations (default 8/3,30/10)
+  --no-box2d                impulse points only
+  --repeats N               timed runs per grid point (default 5)
+  --json                    the sweep as JSON on standard output
+  --csv                     the sweep as CSV on standard output
+  --svg FILE                an SVG plot of error against cost (log axes) with the fronts
+  --progress                progress on standard error even when it is not a terminal
+  --root DIR                where harness/scenes/ is (default: .)
+
+A LIST is comma-separated, e.g. --dt 0.01,0.005. Exit 0, or 2 for bad input.
+)";
+
+std::vector<std::string> split(const std::string& text) {
+    std::vector<std::string> parts;
+    std::string part;
+    std::istringstream in(text);
+    while (std::getline(in, part, ',')) {
+        parts.push_back(part);
+    }
+    if (parts.empty() || (!text.empty() && text.back() == ',')) {
+        throw UsageError("empty item in list '" + text + "'");
+    }
+    return parts;
+}
+
+int whole_number(const std::string& option, const std::string& text) {
+    int value = 0;
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (ec != std::errc() || ptr != end || value < 1 || value > 1000) {
+        throw UsageError(option + " takes whole numbers from 1 to 1000, got '" + text + "'");
+    }
+    return value;
+}
+
+SweepConfig config_from(const Arguments& a, const Scene& scene) {
+    SweepConfig config = default_sweep_config(scene);
+    if (const auto list = a.option("--dt")) {
+        config.dts.clear();
+        for (const std::string& item : split(*list)) {
+            config.dts.push_back(positive_seconds("--dt", item));
+        }
+    }
+    if (const auto list = a.option("--integrator")) {
+        config.integrators.clear();
+        for (const std::string& item : split(*list)) {
+            Integrator integrator{};
+            if (!integrator_from_name(item, integrator)) {
+                throw UsageError(
+                    "--integrator takes euler, symplectic-euler, verlet or rk4, got '" + item +
+                    "'");
+            }
+            config.integrators.push_back(integrator);
+        }
+    }
+    if (const auto list = a.option("--toi")) {
+        config.toi_methods.clear();
+        for (const std::string& item : split(*list)) {
+            TimeOfImpactMethod method{};
+            if (!toi_method_from_name(item, method)) {
+                throw UsageError("--toi takes bisection or secant, got '" + item + "'");
+            }
+            config.toi_methods.push_back(method);
+        }
+    }
+    if (const auto list = a.option("--toi-tolerance")) {
+        config.toi_tolerances.clear();
+        for (const std::string& item : split(*list)) {
+            config.toi_tolerances.push_back(positive_seconds("--toi-tolerance", item));
+        }
+    }
+    if (const auto list = a.option("--box2d-substeps")) {
+        config.box2d_substeps.clear();
+        for (const std::string& item : split(*list)) {
+            config.box2d_substeps.push_back(whole_number("--box2d-substeps", item));
+        }
+    }
+    if (const auto list = a.option("--box2d-iterations")) {
+        config.box2d_iterations.clear();
+        for (const std::string& item : split(*list)) {
+            const std::size_t slash = item.find('/');
+            if (slash == std::string::npos) {
+                throw UsageError("--box2d-iterations takes VELOCITY/POSITION, e.g. 8/3, got '" +
+                                 item + "'");
+            }
+            config.box2d_iterations.emplace_back(
+                whole_number("--box2d-iterations", item.substr(0, slash)),
+                whole_number("--box2d-iterations", item.substr(slash + 1)));
+        }
+    }
+    if (a.has_flag("--no-box2d")) {
+        config.box2d = false;
+    }
+    if (const auto n = a.option("--repeats")) {
+        config.repeats = whole_number("--repeats", *n);
+    }
+    return config;
+}
+
+// Fixed, locale-free formatting for the table and the SVG.
+std::string fixed(double value, int digits) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*f", digits, value);
+    return buffer;
+}
+
+std::string sci(double value, int digits = 2) {
+    if (std::isinf(value)) {
+        return "inf";
+    }
+    if (std::isnan(value)) {
+        return "-";
+    }
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*e", digits, value);
+    return buffer;
+}
+
+std::string pad(std::string text, std::size_t width, bool right = false) {
+    if (text.size() < width) {
+        text = right ? std::string(width - text.size(), ' ') + text
+                     : text + std::string(width - text.size(), ' ');
+    }
+    return text;
+}
+
+std::string settings_of(const SweepPoint& p) {
+    if (p.box2d) {
+        return "sub " + std::to_string(p.substeps) + ", it " +
+               std::to_string(p.velocity_iterations) + "/" + std::to_string(p.position_iterations);
+    }
+    return "tol " + sci(p.toi_tolerance, 0);
+}
+
+std::string dt_text(double dt) {
+    const double hz = 1.0 / dt;
+    if (std::abs(hz - std::round(hz)) < 1e-9 * hz) {
+        return "1/" + fixed(std::round(hz), 0);
+    }
+    return format_double(dt);
+}
+
+void write_table(const SweepResult& r, std::ostream& out) {
+    out << "sweep: " << r.scene << ", " << r.points.size() << " grid points, " << r.repeats
+        << " repeats each, " << format_double(r.simulated_duration) << " s simulated\n";
+    out << "error " << r.error_reference << "\n";
+    out << "cost: seconds of wall time per simulated second (median +- spread); * on its "
+           "family's Pareto front\n\n";
+    out << pad("method", 36) << pad("dt", 7) << pad("settings", 17) << pad("error", 10, true)
+        << pad("cost", 11, true) << pad("+-", 10, true) << pad("steps", 9, true)
+        << pad("narrow", 10, true) << pad("toi_it", 9, true) << "\n";
+    for (const SweepPoint& p : r.points) {
+        out << pad(p.family, 36) << pad(dt_text(p.dt), 7) << pad(settings_of(p), 17);
+        if (!p.ok) {
+            out << "  FAILED: " << p.failure << "\n";
+            continue;
+        }
+        out << pad(sci(p.error), 10, true) << pad(sci(p.cost_median), 11, true)
+            << pad(sci(p.cost_spread, 1), 10, true) << pad(std::to_string(p.work.steps), 9, true);
+        if (p.box2d) {
+            out << pad("-", 10, true) << pad("-", 9, true);
+        } else {
+            out << pad(std::to_string(p.work.narrow_phase_queries), 10, true)
+                << pad(std::to_string(p.work.toi_iterations), 9, true);
+        }
+        out << (p.on_front ? " *" : "") << (p.work_identical ? "" : " (work varied!)") << "\n";
+    }
+    std::size_t failed = 0;
+    for (const SweepPoint& p : r.points) {
+        failed += p.ok ? 0 : 1;
+    }
+    out << "\n" << r.points.size() - failed << " points measured, " << failed << " failed\n";
+}
+
+nlohmann::json number_or_null(double value) {
+    return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+nlohmann::json to_json(const SweepResult& r) {
+    nlohmann::json points = nlohmann::json::array();
+    for (const SweepPoint& p : r.points) {
+        nlohmann::json j;
+        j["engine"] = p.box2d ? "box2d" : "impulse";
+        j["family"] = p.family;
+        j["dt"] = p.dt;
+        if (p.box2d) {
+            j["substeps"] = p.substeps;
+            j["velocity_iterations"] = p.velocity_iterations;
+            j["position_iterations"] = p.position_iterations;
+        } else {
+            j["integrator"] = integrator_name(p.integrator);
+            j["toi"] = toi_method_name(p.toi);
+            j["toi_tolerance"] = p.toi_tolerance;
+        }
+        j["ok"] = p.ok;
+        if (!p.ok) {
+            j["failure"] = p.failure;
+        }
+        j["error"] = p.ok ? number_or_null(p.error) : nullptr;
+        j["cost_median"] = p.ok ? number_or_null(p.cost_median) : nullptr;
+        j["cost_spread"] = p.ok ? number_or_null(p.cost_spread) : nullptr;
+        j["work"] = {{"steps", p.work.steps},
+                     {"narrow_phase_queries", p.work.narrow_phase_queries},
+                     {"toi_iterations", p.work.toi_iterations},
+                     {"collisions", p.work.collisions}};
+        j["work_identical"] = p.work_identical;
+        j["on_front"] = p.on_front;
+        points.push_back(std::move(j));
+    }
+    return {{"scene", r.scene},
+            {"error_reference", r.error_reference},
+            {"against_exact", r.against_exact},
+            {"simulated_duration", r.simulated_duration},
+            {"repeats", r.repeats},
+            {"cost_unit", "seconds per simulated second"},
+            {"points", std::move(points)}};
+}
+
+std::string csv_field(const std::string& text) {
+    if (text.find_first_of(",\"\n") == std::string::npos) {
+        return text;
+    }
+    std::string quoted = "\"";
+    for (const char c : text) {
+        quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    }
+    return quoted + "\"";
+}
+
+std::string csv_number(double value) {
+    return std::isfinite(value) ? format_double(value) : "";
+}
+
+void write_csv(const SweepResult& r, std::ostream& out) {
+    out << "engine,family,dt,integrator,toi,toi_tolerance,substeps,velocity_iterations,"
+           "position_iterations,ok,error,cost_median,cost_spread,steps,narrow_phase_queries,"
+           "toi_iterations,collisions,on_front,failure\n";
+    for (const SweepPoint& p : r.points) {
+        out << (p.box2d ? "box2d" : "impulse") << "," << csv_field(p.family) << ","
+            << format_double(p.dt) << ",";
+        if (p.box2d) {
+            out << ",,," << p.substeps << "," << p.velocity_iterations << ","
+                << p.position_iterations << ",";
+        } else {
+            out << integrator_name(p.integrator) << "," << toi_method_name(p.toi) << ","
+                << format_double(p.toi_tolerance) << ",,,,";
+        }
+        out << (p.ok ? "true" : "false") << "," << (p.ok ? csv_number(p.error) : "") << ","
+            << (p.ok ? csv_number(p.cost_median) : "") << ","
+            << (p.ok ? csv_number(p.cost_spread) : "") << "," << p.work.steps << ","
+            << p.work.narrow_phase_queries << "," << p.work.toi_iterations << ","
+            << p.work.collisions << "," << (p.on_front ? "true" : "false") << ","
+            << csv_field(p.failure) << "\n";
+    }
+}
+
+std::string xml_escape(const std::string& text) {
+    std::string out;
+    for (const char c : text) {
+        switch (c) {
+        case '&':
+            out += "&amp;";
+            break;
+        case '<':
+            out += "&lt;";
+            break;
+        case '>':
+            out += "&gt;";
+            break;
+        case '"':
+            out += "&quot;";
+            break;
+        default:
+            out += c;
+        }
+    }
+    return out;
+}
+
+// Errors of exactly 0 (and anything below) are drawn at this floor.
+constexpr double plot_error_floor = 1e-17;
+
+} // namespace
+
+std::string sweep_svg(const SweepResult& r) {
+    constexpr double width = 880, height = 560, left = 80, right = 250, top = 50, bottom = 60;
+    const double plot_w = width - left - right, plot_h = height - top - bottom;
+    std::vector<const SweepPoint*> drawn;
+    for (const SweepPoint& p : r.points) {
+        if (p.ok && std::isfinite(p.error) && p.cost_median > 0.0) {
+            drawn.push_back(&p);
+        }
+    }
+    auto lx = [](const SweepPoint& p) { return std::log10(p.cost_median); };
+    auto ly = [](const SweepPoint& p) { return std::log10(std::max(p.error, plot_error_floor)); };
+    double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
+    if (!drawn.empty()) {
+        x0 = y0 = 1e300;
+        x1 = y1 = -1e300;
+        for (const SweepPoint* p : drawn) {
+            x0 = std::min(x0, lx(*p));
+            x1 = std::max(x1, lx(*p));
+            y0 = std::min(y0, ly(*p));
+            y1 = std::max(y1, ly(*p));
+        }
+        x0 = std::floor(x0);
+        x1 = std::max(std::ceil(x1), x0 + 1);
+        y0 = std::floor(y0);
+        y1 = std::max(std::ceil(y1), y0 + 1);
+    }
+    auto px = [&](double v) { return left + (v - x0) / (x1 - x0) * plot_w; };
+    auto py = [&](double v) { return top + (y1 - v) / (y1 - y0) * plot_h; };
+
+    // Families in first-appearance order; Box2D drawn last and distinct.
+    std::vector<std::string> families;
+    for (const SweepPoint& p : r.points) {
+        if (std::find(families.begin(), families.end(), p.family) == families.end()) {
+            families.push_back(p.family);
+        }
+    }
+    const char* palette[] = {"#1f77b4", "#aec7e8", "#ff7f0e", "#ffbb78", "#2ca02c",
+                             "#98df8a", "#9467bd", "#c5b0d5", "#8c564b", "#e377c2"};
+    std::map<std::string, std::string> colour;
+    std::size_t next = 0;
+    for (const std::string& f : families) {
+        colour[f] = f == "box2d" ? "#d62728" : palette[next++ % 10];
+    }
+
+    std::ostringstream s;
+    s << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+    s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << fixed(width, 0) << "\" height=\""
+      << fixed(height, 0) << "\" viewBox=\"0 0 " << fixed(width, 0) << " " << fixed(height, 0)
+      << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+    s << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+    s << "<text x=\"" << fixed(left, 0) << "\" y=\"24\" font-size=\"15\">"
+      << xml_escape("impulse sweep: " + r.scene + ", error against cost") << "</text>\n";
+    s << "<text x=\"" << fixed(left, 0) << "\" y=\"40\" font-size=\"10\" fill=\"#555\">"
+      << xml_escape(r.against_exact ? "error against the scene's exact answers"
+                                    : "error against a reference run at the finest settings")
+      << "</text>\n";
+    // Axes and decade ticks.
+    s << "<rect x=\"" << fixed(left, 1) << "\" y=\"" << fixed(top, 1) << "\" width=\""
+      << fixed(plot_w, 1) << "\" height=\"" << fixed(plot_h, 1)
+      << "\" fill=\"none\" stroke=\"#333\"/>\n";
+    for (double d = x0; d <= x1 + 0.5; d += 1.0) {
+        s << "<line x1=\"" << fixed(px(d), 1) << "\" y1=\"" << fixed(top, 1) << "\" x2=\""
+          << fixed(px(d), 1) << "\" y2=\"" << fixed(top + plot_h, 1) << "\" stroke=\"#ddd\"/>\n";
+        s << "<text x=\"" << fixed(px(d), 1) << "\" y=\"" << fixed(top + plot_h + 16, 1)
+          << "\" text-anchor=\"middle\">1e" << fixed(d, 0) << "</text>\n";
+    }
+    const double ystep = y1 - y0 > 12 ? 2.0 : 1.0;
+    for (double d = y0; d <= y1 + 0.5; d += ystep) {
+        s << "<line x1=\"" << fixed(left, 1) << "\" y1=\"" << fixed(py(d), 1) << "\" x2=\""
+          << fixed(left + plot_w, 1) << "\" y2=\"" << fixed(py(d), 1) << "\" stroke=\"#ddd\"/>\n";
+        s << "<text x=\"" << fixed(left - 6, 1) << "\" y=\"" << fixed(py(d) + 4, 1)
+          << "\" text-anchor=\"end\">1e" << fixed(d, 0) << "</text>\n";
+    }
+    s << "<text x=\"" << fixed(left + plot_w / 2, 1) << "\" y=\"" << fixed(height - 16, 1)
+      << "\" text-anchor=\"middle\">cost: wall time per simulated second (s/s, log)</text>\n";
+    s << "<text transform=\"translate(20," << fixed(top + plot_h / 2, 1)
+      << ") rotate(-90)\" text-anchor=\"middle\">error (relative, log; 0 drawn at 1e-17)</text>\n";
+    // All points, faint.
+    for (const SweepPoint* p : drawn) {
+        s << "<circle cx=\"" << fixed(px(lx(*p)), 2) << "\" cy=\"" << fixed(py(ly(*p)), 2)
+          << "\" r=\"2.5\" fill=\"" << colour[p->family] << "\" fill-opacity=\"0.25\"/>\n";
+    }
+    // Each family's front, Box2D's thick and dashed.
+    for (const std::string& f : families) {
+        std::vector<const SweepPoint*> front;
+        for (const SweepPoint* p : drawn) {
+            if (p->family == f && p->on_front) {
+                front.push_back(p);
+            }
+        }
+        if (front.empty()) {
+            continue;
+        }
+        std::sort(front.begin(), front.end(),
+                  [&](const SweepPoint* a, const SweepPoint* b) { return lx(*a) < lx(*b); });
+        const bool box2d = f == "box2d";
+        s << "<polyline fill=\"none\" stroke=\"" << colour[f] << "\" stroke-width=\""
+          << (box2d ? "3" : "1.5") << "\"" << (box2d ? " stroke-dasharray=\"8 4\"" : "")
+          << " points=\"";
+        for (std::size_t i = 0; i < front.size(); ++i) {
+            s << (i ? " " : "") << fixed(px(lx(*front[i])), 2) << ","
+              << fixed(py(ly(*front[i])), 2);
+        }
+        s << "\"/>\n";
+        for (const SweepPoint* p : front) {
+            s << "<circle cx=\"" << fixed(px(lx(*p)), 2) << "\" cy=\"" << fixed(py(ly(*p)), 2)
+              << "\" r=\"" << (box2d ? "4" : "3") << "\" fill=\"" << colour[f] << "\"/>\n";
+        }
+    }
+    // Legend.
+    double ly0 = top + 10;
+    const double lx0 = left + plot_w + 20;
+    for (const std::string& f : families) {
+        const bool box2d = f == "box2d";
+        s << "<line x1=\"" << fixed(lx0, 1) << "\" y1=\"" << fixed(ly0, 1) << "\" x2=\""
+          << fixed(lx0 + 24, 1) << "\" y2=\"" << fixed(ly0, 1) << "\" stroke=\"" << colour[f]
+          << "\" stroke-width=\"" << (box2d ? "3" : "1.5") << "\""
+          << (box2d ? " stroke-dasharray=\"8 4\"" : "") << "/>\n";
+        s << "<text x=\"" << fixed(lx0 + 30, 1) << "\" y=\"" << fixed(ly0 + 4, 1) << "\">"
+          << xml_escape(box2d ? "Box2D 2.4.1" : f) << "</text>\n";
+        ly0 += 18;
+    }
+    s << "<text x=\"" << fixed(lx0, 1) << "\" y=\"" << fixed(ly0 + 8, 1)
+      << "\" font-size=\"10\" fill=\"#555\">lines: Pareto fronts; dots: all points</text>\n";
+    s << "</svg>\n";
+    return s.str();
+}
+
+int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    const Arguments a =
+        parse_arguments(args,
+                        {"--dt", "--integrator", "--toi", "--toi-tolerance", "--box2d-substeps",
+                         "--box2d-iterations", "--repeats", "--svg", "--root"},
+                        {"--help", "--json", "--csv", "--no-box2d", "--progress"});
+    if (a.has_flag("--help")) {
+        out << sweep_help;
+        return exit_ok;
+    }
+    if (a.positional.size() != 1) {
+        throw UsageError("needs exactly one SCENE, got " + std::to_string(a.positional.size()));
+    }
+    if (a.has_flag("--json") && a.has_flag("--csv")) {
+        throw UsageError("--json and --csv cannot be combined");
+    }
+    GateRoot root;
+    if (const auto dir = a.option("--root")) {
+        root.root = *dir;
+    }
+    const Scene scene = load_scene(resolve_scene(root, a.positional.front()));
+    for (const std::string& warning : scene.warnings) {
+        err << "warning: " << warning << "\n";
+    }
+    const SweepConfig config = config_from(a, scene);
+#ifndef IMPULSE_WITH_BOX2D
+    if (config.box2d && !a.has_flag("--no-box2d")) {
+        err << "sweep: this tool was built without Box2D; impulse points only\n";
+    }
+#endif
+    const bool show_progress = a.has_flag("--progress") || ::isatty(STDERR_FILENO) == 1;
+    SweepProgress progress;
+    if (show_progress) {
+        progress = [&err](std::size_t done, std::size_t total, const SweepPoint& p) {
+            err << "sweep: " << done << "/" << total << " " << p.family << " dt "
+                << format_double(p.dt) << (p.ok ? "" : " (failed)") << "\n";
+        };
+    }
+    const SweepResult result = run_sweep(scene, config, progress);
+    if (const auto path = a.option("--svg")) {
+        write_file_atomically(*path, sweep_svg(result));
+    }
+    if (a.has_flag("--json")) {
+        out << to_json(result).dump(2) << "\n";
+    } else if (a.has_flag("--csv")) {
+        write_csv(result, out);
+    } else {
+        write_table(result, out);
+    }
+    return exit_ok;
+}
+
+} // namespace impulse::harness::cli

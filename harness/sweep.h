@@ -1,0 +1,96 @@
+// `impulse sweep`: the speed/accuracy trade. A grid of solver settings run on
+// one scene (impulse over time step, integrator, time-of-impact method and
+// tolerance; Box2D over time step, sub-steps and iterations), each point's
+// error and cost measured, and the Pareto front of every method family.
+// Measurement only: the command line prints (harness/cli/sweep.cpp).
+#pragma once
+
+#include "scene.h"
+#include "world.h"
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace impulse::harness {
+
+struct SweepConfig {
+    std::vector<double> dts;
+    std::vector<Integrator> integrators;
+    std::vector<TimeOfImpactMethod> toi_methods;
+    std::vector<double> toi_tolerances;
+    bool box2d = true; // ignored (no Box2D points) when the tool is built without Box2D
+    std::vector<int> box2d_substeps;
+    std::vector<std::pair<int, int>> box2d_iterations; // (velocity, position)
+    int repeats = 5;                                   // timed runs per grid point
+};
+
+// The defaults: dt in {1/30, ..., 1/960} (those not longer than the scene's
+// duration), all four integrators, both time-of-impact methods, toi_tolerance
+// {1e-6, 1e-9, 1e-12}; Box2D over the same dts x substeps {1, 4} x
+// iterations {8/3, 30/10}; 5 repeats.
+SweepConfig default_sweep_config(const Scene& scene);
+
+// One grid point and what it measured.
+struct SweepPoint {
+    bool box2d = false;
+    std::string family; // "impulse verlet/secant", "box2d"
+    double dt = 0.0;
+    // impulse points
+    Integrator integrator = Integrator::euler;
+    TimeOfImpactMethod toi = TimeOfImpactMethod::bisection;
+    double toi_tolerance = 0.0;
+    // Box2D points
+    int substeps = 0;
+    int velocity_iterations = 0;
+    int position_iterations = 0;
+
+    bool ok = false;
+    std::string failure; // why the engine refused this point, one sentence
+    double error = 0.0;  // the largest relative error (see SweepResult::error_reference)
+    // Seconds of (steady-clock) time per simulated second: median over the
+    // repeats and their spread (max - min).
+    double cost_median = 0.0;
+    double cost_spread = 0.0;
+    // Deterministic work of one run (Box2D: steps only, the rest 0).
+    WorkCounters work;
+    bool work_identical = true; // every repeat counted the same work
+    bool on_front = false;      // on its family's Pareto front in (cost, error)
+};
+
+struct SweepResult {
+    std::string scene;
+    bool against_exact = false;  // the scene's exact answers; otherwise a reference run
+    std::string error_reference; // one sentence saying which
+    double simulated_duration = 0.0;
+    int repeats = 0;
+    std::vector<SweepPoint> points; // impulse points first, then Box2D, in grid order
+};
+
+// Called after each grid point: points done so far, the total, the point.
+using SweepProgress = std::function<void(std::size_t, std::size_t, const SweepPoint&)>;
+
+// Relative error floor: values below this magnitude are compared absolutely.
+inline constexpr double sweep_error_floor = 1e-9;
+
+// Runs the grid. Throws InputError when the configuration cannot apply to the
+// scene (an empty grid, a dt longer than the duration) or when a reference run
+// is needed and the engine refuses it; a grid point the engine refuses is a
+// failed point, never an exception.
+SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
+                      const SweepProgress& progress = {});
+
+// Indices of the points not dominated in (cost, error): no other point has
+// cost <= and error <= with one of them strictly smaller. Sorted by cost,
+// then error.
+std::vector<std::size_t> pareto_front(const std::vector<std::pair<double, double>>& cost_error);
+
+// Sets on_front for every successful point, per family.
+void mark_fronts(std::vector<SweepPoint>& points);
+
+// "impulse verlet/secant" or "box2d".
+std::string sweep_family(const SweepPoint& point);
+
+} // namespace impulse::harness
