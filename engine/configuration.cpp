@@ -38,9 +38,17 @@ double pair_separation(const World& world, const Configuration& configuration, c
 }
 
 int first_interpenetrating_pair(World& world, const Configuration& configuration) {
+    // Each body's rotation once per configuration, not once per pair it is in.
+    std::vector<Transform>& xf = world.scratch_transforms;
+    xf.resize(configuration.size());
+    for (std::size_t i = 0; i < configuration.size(); ++i) {
+        xf[i] = transform_of(configuration[i]);
+    }
     for (std::size_t p = 0; p < world.pairs.size(); ++p) {
         ++world.work.narrow_phase_queries;
-        if (pair_separation(world, configuration, world.pairs[p]) < 0.0) {
+        const Pair& pair = world.pairs[p];
+        if (separation(world.bodies[pair.a].shape, xf[pair.a], world.bodies[pair.b].shape,
+                       xf[pair.b]) < 0.0) {
             return static_cast<int>(p);
         }
     }

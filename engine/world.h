@@ -33,6 +33,7 @@ struct World {
     double restitution = 1.0; // e
     SolverSettings solver;
     WorkCounters work;
+    std::vector<Transform> scratch_transforms; // reused by the interpenetration test
 };
 
 World make_world(std::vector<Body> bodies, Vec2 gravity, double restitution,

@@ -44,6 +44,30 @@ inline bool close_relative(double value, double exact, double rel, double scale 
     return std::fabs(value - exact) <= rel * reference;
 }
 
+// Drop from contact gap h0 under gravity g (PHYSICS.md, written out by hand
+// here so the tests do not check the harness with its own formulas):
+// t1 = sqrt(2 h0 / g), v1 = g t1, impact n + 1 at t1 + sum_{k=1..n} 2 e^k v1 / g,
+// rebound speed e^n v1, apex gap e^(2n) h0, all impacts over at t_inf.
+struct Drop {
+    double h0, g, e;
+    double t1() const { return std::sqrt(2.0 * h0 / g); }
+    double v1() const { return g * t1(); }
+    double impact_time(int n) const { // n = 1, 2, ...
+        double t = t1();
+        double ek = 1.0;
+        for (int k = 1; k < n; ++k) {
+            ek *= e;
+            t += 2.0 * ek * v1() / g;
+        }
+        return t;
+    }
+    double t_inf() const { return t1() + 2.0 * v1() * e / (g * (1.0 - e)); }
+    // Halfway between impacts n and n + 1: a run this long sees exactly n impacts.
+    double duration(int n) const {
+        return impact_time(n) + 0.5 * (impact_time(n + 1) - impact_time(n));
+    }
+};
+
 // Runs the world step by step from t = 0 until `steps` are done or an error.
 inline std::vector<CollisionEvent> run_steps(World& world, double dt, long long steps) {
     std::vector<CollisionEvent> events;

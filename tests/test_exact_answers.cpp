@@ -132,22 +132,7 @@ TEST_CASE("Single-corner impact on static ground at many angles, masses and spee
 
 namespace {
 
-// Drop from contact gap h0 under gravity g (PHYSICS.md): t1 = sqrt(2 h0 / g), v1 = g t1,
-// impact n + 1 at t1 + sum_{k=1..n} 2 e^k v1 / g, rebound speed e^n v1, apex gap e^(2n) h0.
-struct Drop {
-    double h0, g, e;
-    double t1() const { return std::sqrt(2.0 * h0 / g); }
-    double v1() const { return g * t1(); }
-    double impact_time(int n) const { // n = 1, 2, ...
-        double t = t1();
-        double ek = 1.0;
-        for (int k = 1; k < n; ++k) {
-            ek *= e;
-            t += 2.0 * ek * v1() / g;
-        }
-        return t;
-    }
-};
+using impulse::test::Drop;
 
 void check_drop_events(const Drop& d, const std::vector<double>& times,
                        const std::vector<double>& rebound, int impacts) {
@@ -174,8 +159,7 @@ TEST_CASE("Drop: impact times and apex ladder h_n = e^(2n) h0 through the loop",
         const bool circle = trial % 4 < 2;
         const Shape shape = circle ? make_circle(0.5) : make_box(0.5, 0.5);
         const int impacts = 5;
-        const double duration =
-            d.impact_time(impacts) + 0.5 * (d.impact_time(impacts + 1) - d.impact_time(impacts));
+        const double duration = d.duration(impacts);
         World world = make_world({static_body(make_box(50, 0.5), {0, -0.5}),
                                   dynamic_body(shape, 1.0, {0, 0.5 + d.h0}, 0, {}, 0, false)},
                                  {0, -d.g}, d.e, solver_with(integrator));
@@ -209,8 +193,7 @@ TEST_CASE("Drop through `impulse run`: the exact ladder survives the file format
         const Drop d{uniform(rng, 0.2, 5.0), 9.81, uniform(rng, 0.4, 0.9)};
         const double dt = time_steps[trial % 3];
         const int impacts = 4;
-        const double duration =
-            d.impact_time(impacts) + 0.5 * (d.impact_time(impacts + 1) - d.impact_time(impacts));
+        const double duration = d.duration(impacts);
         nlohmann::json scene = {{"schema", "impulse/scene@1"},
                                 {"name", "drop-exact"},
                                 {"gravity", {0, -d.g}},

@@ -93,28 +93,7 @@ struct Tally {
     }
 };
 
-// Drop from contact gap h0 under gravity g (PHYSICS.md): t1 = sqrt(2 h0 / g), v1 = g t1,
-// impact n + 1 at t1 + sum_{k=1..n} 2 e^k v1 / g, rebound speed e^n v1.
-struct Drop {
-    double h0, g, e;
-    double t1() const { return std::sqrt(2.0 * h0 / g); }
-    double v1() const { return g * t1(); }
-    double impact_time(int n) const { // n = 1, 2, ...
-        double t = t1();
-        double ek = 1.0;
-        for (int k = 1; k < n; ++k) {
-            ek *= e;
-            t += 2.0 * ek * v1() / g;
-        }
-        return t;
-    }
-    // All impacts end at t_inf = t1 + 2 v1 e / (g (1 - e)).
-    double t_inf() const { return t1() + 2.0 * v1() * e / (g * (1.0 - e)); }
-    // Halfway between impacts n and n + 1.
-    double duration(int n) const {
-        return impact_time(n) + 0.5 * (impact_time(n + 1) - impact_time(n));
-    }
-};
+using impulse::test::Drop;
 
 // Seeded random drops, verlet and rk4 (exact for constant acceleration) at
 // 1/30 and 1/60 s, circles and non-rotating boxes: the first five impacts.

@@ -7,6 +7,7 @@
 #include "gate.h"
 #include "input_error.h"
 #include "number_format.h"
+#include "render.h"
 
 #include <algorithm>
 #include <charconv>
@@ -304,29 +305,6 @@ void write_csv(const SweepResult& r, std::ostream& out) {
             << p.work.collisions << "," << (p.on_front ? "true" : "false") << ","
             << csv_field(p.failure) << "\n";
     }
-}
-
-std::string xml_escape(const std::string& text) {
-    std::string out;
-    for (const char c : text) {
-        switch (c) {
-        case '&':
-            out += "&amp;";
-            break;
-        case '<':
-            out += "&lt;";
-            break;
-        case '>':
-            out += "&gt;";
-            break;
-        case '"':
-            out += "&quot;";
-            break;
-        default:
-            out += c;
-        }
-    }
-    return out;
 }
 
 // Errors of exactly 0 (and anything below) are drawn at this floor.
