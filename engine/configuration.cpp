@@ -20,13 +20,16 @@ void commit(World& world, const Configuration& configuration) {
     }
 }
 
-void advance_all(const World& world, const Configuration& from, double h, Configuration& to) {
+void advance_all(World& world, const Configuration& from, double h, Configuration& to) {
     to.resize(from.size());
     for (std::size_t i = 0; i < from.size(); ++i) {
         const Body& body = world.bodies[i];
-        to[i] = body.is_static()
-                    ? from[i]
-                    : advance(world.solver.integrator, from[i], world.gravity, body.rotates(), h);
+        if (body.is_static()) {
+            to[i] = from[i];
+            continue;
+        }
+        ++world.work.body_advances;
+        to[i] = advance(world.solver.integrator, from[i], world.gravity, body.rotates(), h);
     }
 }
 

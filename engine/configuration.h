@@ -14,7 +14,7 @@ Configuration configuration_of(const World& world);
 void commit(World& world, const Configuration& configuration);
 
 // Moves every dynamic body h seconds forward from `from` into `to`.
-void advance_all(const World& world, const Configuration& from, double h, Configuration& to);
+void advance_all(World& world, const Configuration& from, double h, Configuration& to);
 
 double pair_separation(const World& world, const Configuration& configuration, const Pair& pair);
 

@@ -18,12 +18,21 @@ static_assert(static_cast<int>(TimeOfImpactMethod::secant) + 1 == time_of_impact
 enum class ContactMode { single };
 inline constexpr int contact_mode_count = 1;
 
+// world: the seed's loop, where a collision anywhere rewinds and re-integrates
+// every body. local: each body keeps its own clock within the step, so a
+// collision re-integrates only the two bodies in it, and a broad phase picks
+// the pairs worth a narrow-phase test (docs/engine.md, "Local stepping"). With
+// one moving body the two give the same bits.
+enum class Stepping { world, local };
+inline constexpr int stepping_count = 2;
+
 struct SolverSettings {
     Integrator integrator = Integrator::euler;
     TimeOfImpactMethod toi = TimeOfImpactMethod::bisection;
     double toi_tolerance = 1e-12;    // seconds
     double contact_tolerance = 1e-9; // metres
     ContactMode contacts = ContactMode::single;
+    Stepping stepping = Stepping::world;
     bool ccd = false;
     bool resting = false;
     // Work bounds that turn a stall into a clear error instead of a hang.

@@ -36,4 +36,33 @@ TimeOfImpact secant_time_of_impact(World& world, const Configuration& start, dou
                                    const Configuration& at_h, int pair_at_h,
                                    Configuration& at_impact);
 
+// Local stepping searches one pair alone, each body on its own clock: u
+// seconds into the search body a is at advance(from_a, offset_a + u) (static
+// bodies stay put), so a body restarted later in the step starts its search
+// where its clock is. With both offsets 0 this is, trial for trial, what the
+// world search does for a world of that one pair.
+struct PairMotion {
+    Pair pair;
+    BodyState from_a;
+    BodyState from_b;
+    double offset_a = 0.0;
+    double offset_b = 0.0;
+};
+
+// The pair's signed separation (one narrow-phase query).
+double pair_separation(World& world, const Pair& pair, const BodyState& a, const BodyState& b);
+
+// The pair's state u seconds into the search (one body advance per dynamic body).
+void pair_state_at(World& world, const PairMotion& motion, double u, BodyState& a, BodyState& b);
+
+// The same contract as time_of_impact() for one pair over [0, h], given its
+// separation s_h < 0 at h; `pair` in the result is unused (-1). The states at
+// the returned time are left in at_a and at_b.
+TimeOfImpact pair_time_of_impact(World& world, const PairMotion& motion, double h, double s_h,
+                                 BodyState& at_a, BodyState& at_b);
+TimeOfImpact bisect_pair_time_of_impact(World& world, const PairMotion& motion, double h,
+                                        BodyState& at_a, BodyState& at_b);
+TimeOfImpact secant_pair_time_of_impact(World& world, const PairMotion& motion, double h,
+                                        double s_h, BodyState& at_a, BodyState& at_b);
+
 } // namespace impulse

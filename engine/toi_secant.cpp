@@ -204,4 +204,39 @@ TimeOfImpact secant_time_of_impact(World& world, const Configuration& start, dou
     return toi;
 }
 
+// secant_time_of_impact() for one pair: the same bracket and trials; the pair
+// never changes, since no other pair is looked at.
+TimeOfImpact secant_pair_time_of_impact(World& world, const PairMotion& motion, double h,
+                                        double s_h, BodyState& at_a, BodyState& at_b) {
+    const SolverSettings& solver = world.solver;
+    TimeOfImpact toi;
+    pair_state_at(world, motion, 0.0, at_a, at_b);
+    Bracket b = bracket_for_pair(0.0, h, pair_separation(world, motion.pair, at_a, at_b), s_h);
+    BodyState trial_a;
+    BodyState trial_b;
+    for (;;) {
+        if (b.hi - b.lo <= solver.toi_tolerance && b.s_lo <= solver.contact_tolerance) {
+            toi.converged = true;
+            break;
+        }
+        const double t = next_trial(b, solver.toi_tolerance, solver.max_halvings - toi.iterations);
+        if (toi.iterations == solver.max_halvings || t <= b.lo || t >= b.hi) {
+            break;
+        }
+        ++toi.iterations;
+        ++world.work.toi_iterations;
+        pair_state_at(world, motion, t, trial_a, trial_b);
+        const double s_t = pair_separation(world, motion.pair, trial_a, trial_b);
+        if (s_t < 0.0) {
+            move_hi(b, t, s_t);
+        } else {
+            at_a = trial_a;
+            at_b = trial_b;
+            move_lo(b, t, s_t);
+        }
+    }
+    toi.time = b.lo;
+    return toi;
+}
+
 } // namespace impulse

@@ -1,8 +1,8 @@
 #include "world.h"
 
 #include "configuration.h"
-#include "manifold.h"
-#include "restitution.h"
+#include "local_stepping.h"
+#include "single_contact.h"
 #include "time_of_impact.h"
 
 namespace impulse {
@@ -14,15 +14,16 @@ World make_world(std::vector<Body> bodies, Vec2 gravity, double restitution,
     world.gravity = gravity;
     world.restitution = restitution;
     world.solver = solver;
+    if (solver.stepping == Stepping::local) {
+        return world;
+    }
     const int n = static_cast<int>(world.bodies.size());
     for (int i = 0; i < n; ++i) {
         for (int k = i + 1; k < n; ++k) {
-            const bool i_static = world.bodies[i].is_static();
-            const bool k_static = world.bodies[k].is_static();
-            if (i_static && k_static) {
+            if (world.bodies[i].is_static() && world.bodies[k].is_static()) {
                 continue; // static bodies never collide with each other
             }
-            world.pairs.push_back(i_static ? Pair{k, i} : Pair{i, k});
+            world.pairs.push_back(pair_of(world, i, k));
         }
     }
     return world;
@@ -30,37 +31,10 @@ World make_world(std::vector<Body> bodies, Vec2 gravity, double restitution,
 
 namespace {
 
-// The seed resolves one point of one pair at a time: the deepest approaching
-// point of the pair found by the time-of-impact search (ties go to the first).
-bool resolve_single_contact(World& world, const Pair& pair, double time,
-                            std::vector<CollisionEvent>& events) {
-    Body& a = world.bodies[pair.a];
-    Body& b = world.bodies[pair.b];
-    ++world.work.narrow_phase_queries;
-    const Manifold m = collide(a.shape, transform_of(a.state), b.shape, transform_of(b.state),
-                               world.solver.contact_tolerance);
-    int chosen = -1;
-    for (int i = 0; i < m.point_count; ++i) {
-        const Contact& c = m.points[i];
-        if (relative_normal_velocity(a, b, c.point, c.normal) < 0.0 &&
-            (chosen < 0 || c.separation < m.points[chosen].separation)) {
-            chosen = i;
-        }
-    }
-    if (chosen < 0) {
-        return false;
-    }
-    const Contact& c = m.points[chosen];
-    const Impulse impulse = resolve_collision(a, b, c, world.restitution);
-    events.push_back(
-        {time, pair.a, pair.b, c.point, c.normal, impulse.j, impulse.vn_before, impulse.vn_after});
-    return true;
-}
-
-} // namespace
-
-std::optional<StepError> step(World& world, double t0, double dt,
-                              std::vector<CollisionEvent>& events) {
+// The seed's loop: every collision rewinds the whole world to its time and
+// integrates every body again from there.
+std::optional<StepError> step_world(World& world, double t0, double dt,
+                                    std::vector<CollisionEvent>& events) {
     ++world.work.steps;
     Configuration start = configuration_of(world);
     Configuration trial;
@@ -96,6 +70,19 @@ std::optional<StepError> step(World& world, double t0, double dt,
         }
         start = configuration_of(world);
     }
+}
+
+} // namespace
+
+std::optional<StepError> step(World& world, double t0, double dt,
+                              std::vector<CollisionEvent>& events) {
+    switch (world.solver.stepping) {
+    case Stepping::world:
+        return step_world(world, t0, dt, events);
+    case Stepping::local:
+        return step_local(world, t0, dt, events);
+    }
+    return step_world(world, t0, dt, events);
 }
 
 } // namespace impulse

@@ -3,6 +3,8 @@
 #pragma once
 
 #include "body.h"
+#include "body_clock.h"
+#include "broad_phase.h"
 #include "contact.h"
 #include "solver_settings.h"
 
@@ -24,17 +26,41 @@ struct WorkCounters {
     long long narrow_phase_queries = 0;
     long long toi_iterations = 0;
     long long collisions = 0;
+    long long body_advances = 0; // one body integrated over one interval
+    // Local stepping: pairs found already interpenetrating and separating at the
+    // start of their search, left to separate (docs/engine.md, "Local stepping").
+    long long missed_grazes = 0;
+};
+
+// Scratch memory of local stepping, kept between steps so a step allocates nothing.
+struct LocalScratch {
+    std::vector<BodyClock> clocks;
+    std::vector<Aabb> boxes;
+    UniformGrid grid;
+    std::vector<PendingCollision> queue; // a heap ordered by later()
 };
 
 struct World {
     std::vector<Body> bodies;
-    std::vector<Pair> pairs; // every pair that is not two static bodies, in body order
+    // Every pair that is not two static bodies, in body order: what the seed's
+    // world stepping tests. Local stepping finds its pairs with the broad
+    // phase instead and leaves this empty (N^2 pairs would not fit 10^4 bodies).
+    std::vector<Pair> pairs;
     Vec2 gravity;
     double restitution = 1.0; // e
     SolverSettings solver;
     WorkCounters work;
     std::vector<Transform> scratch_transforms; // reused by the interpenetration test
+    LocalScratch local;
 };
+
+// The pair of bodies i and k in the engine's order: a is the dynamic one when
+// the other is static, else the lower index.
+inline Pair pair_of(const World& world, int i, int k) {
+    const int lo = i < k ? i : k;
+    const int hi = i < k ? k : i;
+    return world.bodies[static_cast<std::size_t>(lo)].is_static() ? Pair{hi, lo} : Pair{lo, hi};
+}
 
 World make_world(std::vector<Body> bodies, Vec2 gravity, double restitution,
                  const SolverSettings& solver);
@@ -42,6 +68,7 @@ World make_world(std::vector<Body> bodies, Vec2 gravity, double restitution,
 enum class StepFailure {
     toi_not_converged,   // the bisection could not reach toi_tolerance
     too_many_collisions, // more than solver.max_collisions_per_step within one step
+                         // (local stepping: for one body)
     resting_contact,     // touching, interpenetrating next, yet not approaching
 };
 
