@@ -11,6 +11,7 @@
 #include "atomic_file.h"
 #include "body.h"
 #include "exact_answers.h"
+#include "gas.h"
 #include "input_error.h"
 #include "manifold.h"
 #include "rotation.h"
@@ -26,7 +27,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <optional>
 #include <set>
 #include <system_error>
@@ -235,6 +238,26 @@ double read_positive(const Node& node) {
     return value;
 }
 
+// A count: a JSON number with no fractional part (3, or 3.0 written as a
+// float), from `low` to `high`.
+long long read_whole(const Node& node, long long low, long long high) {
+    const double value = read_number(node);
+    if (value != std::floor(value) || value < static_cast<double>(low) ||
+        value > static_cast<double>(high)) {
+        node.fail("must be a whole number from " + std::to_string(low) + " to " +
+                  std::to_string(high) + ", got " + number_text(value));
+    }
+    return static_cast<long long>(value);
+}
+
+double read_non_negative(const Node& node) {
+    const double value = read_number(node);
+    if (!(value >= 0.0)) {
+        node.fail("must be >= 0, got " + number_text(value));
+    }
+    return value;
+}
+
 // [x, y]
 Vec2 read_vec2(const Node& node) {
     if (!node.json().is_array() || node.json().size() != 2) {
@@ -358,7 +381,7 @@ void require_only(const Node& node, const Json& only, const std::string& why) {
 void read_solver(const Node& node, SolverSettings& solver) {
     require_object(node);
     reject_unknown_keys(node, {"integrator", "toi", "toi_tolerance", "contact_tolerance",
-                               "contacts", "ccd", "resting"});
+                               "contacts", "stepping", "ccd", "resting"});
     if (const std::optional<Node> integrator = optional_member(node, "integrator")) {
         if (!integrator->json().is_string() ||
             !integrator_from_name(integrator->json().get<std::string>(), solver.integrator)) {
@@ -379,6 +402,13 @@ void read_solver(const Node& node, SolverSettings& solver) {
         read_positive_or(node, "contact_tolerance", solver.contact_tolerance);
     if (const std::optional<Node> contacts = optional_member(node, "contacts")) {
         require_only(*contacts, "single", "this version models one contact point at a time");
+    }
+    if (const std::optional<Node> stepping = optional_member(node, "stepping")) {
+        if (!stepping->json().is_string() ||
+            !stepping_from_name(stepping->json().get<std::string>(), solver.stepping)) {
+            stepping->fail("must be \"world\" (the seed's) or \"local\", got " +
+                           describe(stepping->json()));
+        }
     }
     if (const std::optional<Node> ccd = optional_member(node, "ccd")) {
         require_only(*ccd, false, "this version does not catch tunnelling between steps");
@@ -508,34 +538,47 @@ Shape read_shape(const Node& node) {
     return read_polygon(value);
 }
 
+// Moves a polygon's vertices by minus its centroid; returns the centroid when
+// it was off the origin (by more than centroid_tolerance of the size).
+std::optional<Vec2> recentre_on_centroid(Shape& shape) {
+    if (shape.type != ShapeType::polygon) {
+        return std::nullopt;
+    }
+    const Polygon& polygon = shape.polygon;
+    double size = 0.0;
+    for (int i = 0; i < polygon.count; ++i) {
+        size = std::max(size, length(polygon.vertices[static_cast<std::size_t>(i)]));
+    }
+    const Vec2 centroid = mass_properties(shape).centroid;
+    if (!(length(centroid) > centroid_tolerance * size)) {
+        return std::nullopt;
+    }
+    std::vector<Vec2> moved;
+    for (int i = 0; i < polygon.count; ++i) {
+        moved.push_back(polygon.vertices[static_cast<std::size_t>(i)] - centroid);
+    }
+    shape = make_polygon(moved.data(), polygon.count);
+    return centroid;
+}
+
+std::string centroid_warning(const std::string& file, const std::string& shape_path, Vec2 centroid,
+                             const std::string& consequence) {
+    return file + ": " + shape_path + ".polygon: centroid is at (" + number_text(centroid.x) +
+           ", " + number_text(centroid.y) + "), not at the origin; " + consequence;
+}
+
 // The engine puts a body's centre of mass at its shape's origin. A polygon
 // given around some other point is moved so its centroid is the origin, and
 // the body's position moved by the same offset (turned by the body's angle) so
 // every vertex stays where the file put it in the world.
 void recentre_polygon(SceneBody& body, const std::string& shape_path, const std::string& file,
                       std::vector<std::string>& warnings) {
-    if (body.shape.type != ShapeType::polygon) {
-        return;
+    if (const std::optional<Vec2> centroid = recentre_on_centroid(body.shape)) {
+        body.position += rotate(rotation_of(body.angle), *centroid);
+        warnings.push_back(
+            centroid_warning(file, shape_path, *centroid,
+                             "vertices recentred and position moved to keep the body in place"));
     }
-    const Polygon& polygon = body.shape.polygon;
-    double size = 0.0;
-    for (int i = 0; i < polygon.count; ++i) {
-        size = std::max(size, length(polygon.vertices[static_cast<std::size_t>(i)]));
-    }
-    const Vec2 centroid = mass_properties(body.shape).centroid;
-    if (!(length(centroid) > centroid_tolerance * size)) {
-        return;
-    }
-    std::vector<Vec2> moved;
-    for (int i = 0; i < polygon.count; ++i) {
-        moved.push_back(polygon.vertices[static_cast<std::size_t>(i)] - centroid);
-    }
-    body.shape = make_polygon(moved.data(), polygon.count);
-    body.position += rotate(rotation_of(body.angle), centroid);
-    warnings.push_back(file + ": " + shape_path + ".polygon: centroid is at (" +
-                       number_text(centroid.x) + ", " + number_text(centroid.y) +
-                       "), not at the origin; vertices recentred and position moved to keep "
-                       "the body in place");
 }
 
 // ---------------------------------------------------------------- bodies
@@ -613,19 +656,22 @@ void resolve_mass(const Node& node, const MassSpec& spec, SceneBody& body) {
     }
 }
 
-// Reads bodies[i]; `scene` holds the bodies before it (for unique names) and
-// collects warnings.
-SceneBody read_body(const Node& node, Scene& scene) {
+// Every body name read so far and its index: a lookup, so that a long list of
+// bodies loads in O(N log N).
+using NameIndex = std::map<std::string, std::size_t>;
+
+// Reads bodies[i]; `names` holds the bodies before it (for unique names) and
+// `scene` collects warnings.
+SceneBody read_body(const Node& node, Scene& scene, NameIndex& names) {
     require_object(node);
     reject_unknown_keys(node, body_keys);
     SceneBody body;
     const Node name = required_member(node, "name");
     body.name = read_name(name);
-    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-        if (scene.bodies[i].name == body.name) {
-            name.fail("\"" + body.name + "\" is already the name of bodies[" + std::to_string(i) +
-                      "]; body names must be unique");
-        }
+    const auto [previous, fresh] = names.emplace(body.name, names.size());
+    if (!fresh) {
+        name.fail("\"" + body.name + "\" is already the name of bodies[" +
+                  std::to_string(previous->second) + "]; body names must be unique");
     }
     body.is_static = read_bool_or(node, "static", false);
     const Node shape = required_member(node, "shape");
@@ -652,66 +698,277 @@ BodyState initial_state(const SceneBody& body) {
     return state;
 }
 
-// The engine resolves collisions as they happen; bodies already interpenetrating
-// at t = 0 have no collision time, so the run would be meaningless. Touching is
-// fine. Static bodies may overlap one another (walls meeting in a corner).
-void reject_initial_overlaps(const Node& bodies, const std::vector<SceneBody>& scene_bodies) {
-    for (std::size_t j = 1; j < scene_bodies.size(); ++j) {
-        const SceneBody& b = scene_bodies[j];
-        const Transform xb = transform_of(initial_state(b));
-        for (std::size_t i = 0; i < j; ++i) {
-            const SceneBody& a = scene_bodies[i];
-            if (a.is_static && b.is_static) {
-                continue;
-            }
-            const double gap = separation(a.shape, transform_of(initial_state(a)), b.shape, xb);
-            if (gap < 0.0) {
-                bodies.element(j).fail("'" + b.name + "' overlaps bodies[" + std::to_string(i) +
-                                       "] '" + a.name + "' at t = 0 by " + number_text(-gap) +
-                                       " m");
-            }
-        }
-    }
-}
-
-void read_bodies(const Node& node, Scene& scene) {
+// The file's "bodies" array; with a gas block it may be empty or left out.
+void read_listed_bodies(const Node& node, Scene& scene, bool has_gas, NameIndex& names) {
     require_array(node);
-    if (node.json().empty()) {
+    if (node.json().empty() && !has_gas) {
         node.fail("must list at least one body");
     }
     for (std::size_t i = 0; i < node.json().size(); ++i) {
-        scene.bodies.push_back(read_body(node.element(i), scene));
+        scene.bodies.push_back(read_body(node.element(i), scene, names));
     }
+    scene.listed_bodies = scene.bodies.size();
     const bool all_static = std::all_of(scene.bodies.begin(), scene.bodies.end(),
                                         [](const SceneBody& body) { return body.is_static; });
-    if (all_static) {
+    if (all_static && !has_gas) {
         node.fail("every body is static, so nothing would move; at least one body must be "
                   "dynamic");
     }
-    reject_initial_overlaps(node, scene.bodies);
+}
+
+// ---------------------------------------------------------------- the gas block
+
+// Far more than a scale scene needs; a bound keeps a typo from asking for a
+// billion bodies.
+constexpr long long max_gas_count = 100000;
+// 2^53: the largest whole number a JSON reader is sure to hold exactly.
+constexpr long long max_gas_seed = 9007199254740992;
+
+const std::vector<std::string> gas_keys = {"count",
+                                           "shape",
+                                           "mass",
+                                           "density",
+                                           "spacing",
+                                           "max_speed",
+                                           "max_angular_speed",
+                                           "random_angles",
+                                           "seed",
+                                           "wall_thickness"};
+
+// Whether `name` is one the gas block gives a body: a wall's, or gas-N with
+// N < count written without leading zeros.
+bool is_gas_name(const std::string& name, int count) {
+    for (const char* wall : {"wall-bottom", "wall-top", "wall-left", "wall-right"}) {
+        if (name == wall) {
+            return true;
+        }
+    }
+    const std::string prefix = "gas-";
+    if (name.rfind(prefix, 0) != 0 || name.size() == prefix.size() ||
+        name.size() > prefix.size() + 6) {
+        return false;
+    }
+    const std::string digits = name.substr(prefix.size());
+    if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }) ||
+        (digits.size() > 1 && digits[0] == '0')) {
+        return false;
+    }
+    return std::stol(digits) < count;
+}
+
+// The gas's mass and inertia, from mass or density (default 1) as for a body.
+void read_gas_mass(const Node& node, GasSpec& gas) {
+    const MassProperties shape = mass_properties(gas.shape);
+    std::optional<double> mass;
+    if (const std::optional<Node> given = optional_member(node, "mass")) {
+        mass = read_positive(*given);
+    }
+    double density = 1.0;
+    if (const std::optional<Node> given = optional_member(node, "density")) {
+        density = read_positive(*given);
+        if (mass) {
+            given->fail("give mass or density, not both");
+        }
+    }
+    gas.mass = mass ? *mass : density * shape.area;
+    if (!std::isfinite(gas.mass) || !(gas.mass > 0.0)) {
+        node.fail("its shape and density give each body a mass of " + number_text(gas.mass) +
+                  " kg; it must be finite and > 0");
+    }
+    gas.inertia = gas.mass * shape.inertia_per_unit_mass;
+    if (!std::isfinite(gas.inertia) || !(gas.inertia > 0.0)) {
+        node.fail("its shape and mass give each body a moment of inertia of " +
+                  number_text(gas.inertia) + " kg m^2; it must be finite and > 0");
+    }
+}
+
+// "gas": reads and validates the block, then appends its walls and bodies
+// (gas.h) after the listed ones. The names it gives must not be taken.
+void read_gas(const Node& node, Scene& scene) {
+    require_object(node);
+    reject_unknown_keys(node, gas_keys);
+    GasSpec gas;
+    gas.count = static_cast<int>(read_whole(required_member(node, "count"), 1, max_gas_count));
+    const Node shape = required_member(node, "shape");
+    gas.shape = read_shape(shape);
+    // Each body's centre of mass sits on its site, so there is no position to
+    // move: only the vertices are recentred.
+    if (const std::optional<Vec2> centroid = recentre_on_centroid(gas.shape)) {
+        scene.warnings.push_back(centroid_warning(
+            scene.file, shape.path(), *centroid,
+            "vertices recentred; each gas body's centroid sits on its lattice site"));
+    }
+    read_gas_mass(node, gas);
+    const Node spacing = required_member(node, "spacing");
+    gas.spacing = read_positive(spacing);
+    // Closer sites could let two bodies overlap at some angles; the room is
+    // checked for overlaps below, but this says what to change.
+    const double diameter = bounding_diameter(gas.shape);
+    if (!(gas.spacing > diameter)) {
+        spacing.fail("must be more than the shape's bounding diameter " + number_text(diameter) +
+                     " m (twice its furthest point from the centroid), so that no two bodies "
+                     "overlap at any angle, got " +
+                     number_text(gas.spacing));
+    }
+    gas.max_speed = read_non_negative(required_member(node, "max_speed"));
+    if (const std::optional<Node> given = optional_member(node, "max_angular_speed")) {
+        gas.max_angular_speed = read_non_negative(*given);
+    }
+    gas.random_angles = read_bool_or(node, "random_angles", false);
+    if (const std::optional<Node> given = optional_member(node, "seed")) {
+        gas.seed = static_cast<std::uint64_t>(read_whole(*given, 0, max_gas_seed));
+    }
+    gas.wall_thickness = read_positive_or(node, "wall_thickness", gas.wall_thickness);
+    const double side = static_cast<double>(gas_lattice_side(gas.count)) * gas.spacing;
+    if (!std::isfinite(side)) {
+        spacing.fail("gives a room " + number_text(side) + " m wide; it must be finite");
+    }
+    if (!std::isfinite(side + 2.0 * gas.wall_thickness)) {
+        node.member("wall_thickness")
+            .fail("gives a room " + number_text(side + 2.0 * gas.wall_thickness) +
+                  " m wide with its walls; it must be finite");
+    }
+    for (std::size_t i = 0; i < scene.listed_bodies; ++i) {
+        if (is_gas_name(scene.bodies[i].name, gas.count)) {
+            node.fail("makes a body named \"" + scene.bodies[i].name +
+                      "\", which is already the name of bodies[" + std::to_string(i) +
+                      "]; body names must be unique (the gas block's are wall-bottom, wall-top, "
+                      "wall-left, wall-right and gas-0 to gas-" +
+                      std::to_string(gas.count - 1) + ")");
+        }
+    }
+    std::vector<SceneBody> made = generate_gas(gas);
+    scene.bodies.insert(scene.bodies.end(), std::make_move_iterator(made.begin()),
+                        std::make_move_iterator(made.end()));
+    scene.gas = gas;
+}
+
+// ---------------------------------------------------------------- overlaps at t = 0
+
+// A body's bounding box at t = 0, from the same world vertices the narrow
+// phase computes, widened by a hair (see reject_initial_overlaps).
+struct Extent {
+    double lo_x = 0.0, hi_x = 0.0, lo_y = 0.0, hi_y = 0.0;
+};
+
+Extent extent_of(const SceneBody& body, const Transform& xf) {
+    Extent e;
+    if (body.shape.type == ShapeType::circle) {
+        const double r = body.shape.radius;
+        e = {xf.p.x - r, xf.p.x + r, xf.p.y - r, xf.p.y + r};
+    } else {
+        const Polygon& polygon = body.shape.polygon;
+        const Vec2 first = apply(xf, polygon.vertices[0]);
+        e = {first.x, first.x, first.y, first.y};
+        for (int i = 1; i < polygon.count; ++i) {
+            const Vec2 v = apply(xf, polygon.vertices[static_cast<std::size_t>(i)]);
+            e = {std::min(e.lo_x, v.x), std::max(e.hi_x, v.x), std::min(e.lo_y, v.y),
+                 std::max(e.hi_y, v.y)};
+        }
+    }
+    const double slack =
+        1e-9 * (std::max(e.hi_x - e.lo_x, e.hi_y - e.lo_y) + std::abs(xf.p.x) + std::abs(xf.p.y));
+    return {e.lo_x - slack, e.hi_x + slack, e.lo_y - slack, e.hi_y + slack};
+}
+
+// The JSON path a problem with scene body `index` is reported at: its entry in
+// "bodies", or the gas block that made it.
+std::string body_path(const Scene& scene, std::size_t index) {
+    return index < scene.listed_bodies ? json_element_path("bodies", index) : std::string("gas");
+}
+
+std::string body_reference(const Scene& scene, std::size_t index) {
+    const std::string name = "'" + scene.bodies[index].name + "'";
+    return index < scene.listed_bodies ? "bodies[" + std::to_string(index) + "] " + name
+                                       : name + " of the gas block";
+}
+
+// The engine resolves collisions as they happen; bodies already interpenetrating
+// at t = 0 have no collision time, so the run would be meaningless. Touching is
+// fine. Static bodies may overlap one another (walls meeting in a corner).
+//
+// The pair reported is the one the plain double loop over (j, i < j) meets
+// first: the smallest j, then the smallest i, at bodies[j]. Testing every pair
+// is O(N^2), too slow for a gas of 10,000; instead the bodies are swept in
+// order of their bounding boxes' left edges and only pairs whose boxes meet
+// are tested, each with the same call (same argument order, same bits) as the
+// double loop would make. Every overlap found is a candidate and the least
+// (j, i) wins, so the sweep's order never decides which pair is named. The
+// boxes are widened by 1e-9 of their size and position so that a pair whose
+// computed gap is negative only by rounding is still tested, as before.
+void reject_initial_overlaps(const Scene& scene) {
+    const std::vector<SceneBody>& bodies = scene.bodies;
+    std::vector<Transform> transforms;
+    std::vector<Extent> extents;
+    transforms.reserve(bodies.size());
+    extents.reserve(bodies.size());
+    for (const SceneBody& body : bodies) {
+        transforms.push_back(transform_of(initial_state(body)));
+        extents.push_back(extent_of(body, transforms.back()));
+    }
+    std::vector<std::size_t> order(bodies.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return extents[a].lo_x < extents[b].lo_x || (extents[a].lo_x == extents[b].lo_x && a < b);
+    });
+    struct Overlap {
+        std::size_t j = 0, i = 0;
+        double gap = 0.0;
+    };
+    std::optional<Overlap> first;
+    std::vector<std::size_t> active; // boxes that may still reach the next one's left edge
+    for (const std::size_t p : order) {
+        const Extent& e = extents[p];
+        active.erase(std::remove_if(active.begin(), active.end(),
+                                    [&](std::size_t q) { return extents[q].hi_x < e.lo_x; }),
+                     active.end());
+        for (const std::size_t q : active) {
+            const Extent& f = extents[q];
+            if (f.hi_y < e.lo_y || e.hi_y < f.lo_y) {
+                continue;
+            }
+            const std::size_t j = std::max(p, q);
+            const std::size_t i = std::min(p, q);
+            if ((bodies[i].is_static && bodies[j].is_static) ||
+                (first && (j > first->j || (j == first->j && i > first->i)))) {
+                continue;
+            }
+            const double gap =
+                separation(bodies[i].shape, transforms[i], bodies[j].shape, transforms[j]);
+            if (gap < 0.0) {
+                first = Overlap{j, i, gap};
+            }
+        }
+        active.push_back(p);
+    }
+    if (first) {
+        throw InputError(scene.file, body_path(scene, first->j),
+                         "'" + bodies[first->j].name + "' overlaps " +
+                             body_reference(scene, first->i) + " at t = 0 by " +
+                             number_text(-first->gap) + " m");
+    }
+}
+
+// "bodies" and "gas": the listed bodies, then the gas block's.
+void read_bodies(const Node& root, Scene& scene) {
+    const std::optional<Node> listed = optional_member(root, "bodies");
+    const std::optional<Node> gas = optional_member(root, "gas");
+    if (!listed && !gas) {
+        throw InputError(root.file(), "bodies",
+                         "is required but missing; a scene lists its bodies, has a gas block, "
+                         "or both");
+    }
+    NameIndex names;
+    if (listed) {
+        read_listed_bodies(*listed, scene, gas.has_value(), names);
+    }
+    if (gas) {
+        read_gas(*gas, scene);
+    }
+    reject_initial_overlaps(scene);
 }
 
 // ---------------------------------------------------------------- tolerances
-
-// A count: a JSON number with no fractional part (3, or 3.0 written as a
-// float), from `low` to `high`.
-long long read_whole(const Node& node, long long low, long long high) {
-    const double value = read_number(node);
-    if (value != std::floor(value) || value < static_cast<double>(low) ||
-        value > static_cast<double>(high)) {
-        node.fail("must be a whole number from " + std::to_string(low) + " to " +
-                  std::to_string(high) + ", got " + number_text(value));
-    }
-    return static_cast<long long>(value);
-}
-
-double read_non_negative(const Node& node) {
-    const double value = read_number(node);
-    if (!(value >= 0.0)) {
-        node.fail("must be >= 0, got " + number_text(value));
-    }
-    return value;
-}
 
 // ULP distances are counted in a uint64_t; 2^53 is the largest whole number a
 // JSON reader is sure to hold exactly, and far more than any useful bound.
@@ -752,6 +1009,9 @@ void read_tolerances(const Node& node, Tolerances& tolerances) {
 
 // ---------------------------------------------------------------- expectations
 
+// A gas has thousands of bodies: a message lists this many names at most.
+constexpr std::size_t max_names_listed = 20;
+
 // The index of the body a string value names.
 std::size_t read_body_reference(const Node& node, const Scene& scene) {
     const std::string name = read_string(node);
@@ -760,9 +1020,13 @@ std::size_t read_body_reference(const Node& node, const Scene& scene) {
         if (scene.bodies[i].name == name) {
             return i;
         }
-        names.push_back(scene.bodies[i].name);
+        if (names.size() < max_names_listed) {
+            names.push_back(scene.bodies[i].name);
+        }
     }
-    node.fail("no body is named " + describe(node.json()) + "; the bodies are " + list_of(names));
+    const std::size_t more = scene.bodies.size() - names.size();
+    node.fail("no body is named " + describe(node.json()) + "; the bodies are " + list_of(names) +
+              (more > 0 ? " and " + std::to_string(more) + " more" : ""));
 }
 
 // Static bodies have no columns in a trajectory and no motion to check.
@@ -864,6 +1128,18 @@ void validate_conserved(const Node& node, const Scene& scene, Expectation& expec
     }
 }
 
+// A gas in a closed room: the walls change the total momentum, by exactly the
+// impulses they give. Gravity would add m g t on top, which this check does not
+// model.
+void validate_momentum_balance(const Node& node, const Scene& scene, Expectation&) {
+    if (scene.gravity != Vec2{}) {
+        node.fail("momentum-balance needs zero gravity, but the scene's gravity is (" +
+                  number_text(scene.gravity.x) + ", " + number_text(scene.gravity.y) +
+                  "); gravity would add m g t to the momentum, which the balance of impulses "
+                  "does not account for");
+    }
+}
+
 // Literal values, read in the order they are listed, so a report lists them so.
 void read_literal_values(const Node& node, const std::vector<std::string>& scalars,
                          const std::vector<std::string>& pairs, Expectation& expectation) {
@@ -937,6 +1213,7 @@ const std::vector<ExpectationKind>& expectation_kinds() {
         {"head-on", Expectation::Kind::head_on, {"a", "b"}, validate_head_on},
         {"conserved", Expectation::Kind::conserved, {"quantities"}, validate_conserved},
         {"energy-non-increasing", Expectation::Kind::energy_non_increasing, {}, validate_nothing},
+        {"momentum-balance", Expectation::Kind::momentum_balance, {}, validate_momentum_balance},
         {"event",
          Expectation::Kind::event,
          {"index", "a", "b", "t", "impulse", "vn_before", "vn_after", "point", "normal"},
@@ -1115,9 +1392,9 @@ void read_box2d(const Node& node, Scene& scene) {
     }
 }
 
-const std::vector<std::string> scene_keys = {"schema",      "name",      "description",  "gravity",
-                                             "restitution", "dt",        "duration",     "solver",
-                                             "bodies",      "tolerance", "expectations", "box2d"};
+const std::vector<std::string> scene_keys = {
+    "schema", "name",   "description", "gravity",   "restitution",  "dt",   "duration",
+    "solver", "bodies", "gas",         "tolerance", "expectations", "box2d"};
 
 Scene read_scene(const Node& root) {
     if (!root.json().is_object()) {
@@ -1138,7 +1415,7 @@ Scene read_scene(const Node& root) {
     if (const std::optional<Node> solver = optional_member(root, "solver")) {
         read_solver(*solver, scene.solver);
     }
-    read_bodies(required_member(root, "bodies"), scene);
+    read_bodies(root, scene);
     // These refer to bodies, so they are read once the bodies are known.
     if (const std::optional<Node> tolerance = optional_member(root, "tolerance")) {
         read_tolerances(*tolerance, scene.tolerances);
@@ -1216,6 +1493,27 @@ const char* contact_mode_name(ContactMode mode) {
         return "single";
     }
     return "unknown";
+}
+
+const char* stepping_name(Stepping stepping) {
+    switch (stepping) {
+    case Stepping::world:
+        return "world";
+    case Stepping::local:
+        return "local";
+    }
+    return "unknown";
+}
+
+bool stepping_from_name(const std::string& name, Stepping& out) {
+    for (int i = 0; i < stepping_count; ++i) {
+        const auto candidate = static_cast<Stepping>(i);
+        if (name == stepping_name(candidate)) {
+            out = candidate;
+            return true;
+        }
+    }
+    return false;
 }
 
 bool toi_method_from_name(const std::string& name, TimeOfImpactMethod& out) {

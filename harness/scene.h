@@ -7,6 +7,8 @@
 #include "tolerance.h"
 #include "vec2.h"
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,18 +40,19 @@ struct Expectation {
         head_on,               // PHYSICS.md 1D head-on collision of two free bodies
         conserved,             // linear momentum, angular momentum about the origin, energy
         energy_non_increasing, // e < 1: energy never grows from frame to frame
+        momentum_balance,      // momentum changes only by the static bodies' impulses
         event,                 // literal values of one collision event
         state,                 // literal values of one body at one frame time
     };
     Kind kind = Kind::conserved;
-    std::string path;        // JSON path of this expectation, e.g. "expectations[2]"
-    std::string description; // optional, shown in reports
-    std::string body;        // drop, corner_impact, state; head_on: body A
-    std::string other;       // head_on: body B
-    int impacts = 0;         // drop: how many impacts to check
+    std::string path;                    // JSON path of this expectation, e.g. "expectations[2]"
+    std::string description;             // optional, shown in reports
+    std::string body;                    // drop, corner_impact, state; head_on: body A
+    std::string other;                   // head_on: body B
+    int impacts = 0;                     // drop: how many impacts to check
     std::vector<std::string> quantities; // conserved: "momentum", "angular_momentum", "energy"
-    std::size_t index = 0;   // event: which event (0-based)
-    double t = 0.0;          // state: the frame time
+    std::size_t index = 0;               // event: which event (0-based)
+    double t = 0.0;                      // state: the frame time
     // event / state: field name -> expected value ("t", "impulse", "vn_before",
     // "vn_after", "point.x", "normal.y", ...; "x", "y", "angle", "vx", "vy", "omega").
     std::vector<std::pair<std::string, double>> values;
@@ -87,6 +90,22 @@ struct Box2dSettings {
     std::vector<Box2dObservable> observables;
 };
 
+// The scene's "gas" block as read, with its shape's mass properties resolved:
+// a frictionless gas of `count` equal bodies on a square lattice in a closed
+// square room (docs/formats.md, "The gas block"; harness/gas.h generates it).
+struct GasSpec {
+    int count = 0;
+    Shape shape; // centred on its centroid (a polygon given off it is recentred)
+    double mass = 0.0;
+    double inertia = 0.0;
+    double spacing = 0.0;           // m between lattice sites
+    double max_speed = 0.0;         // m/s: velocities uniform in the disc of this radius
+    double max_angular_speed = 0.0; // rad/s: angular velocities uniform in [-max, max)
+    bool random_angles = false;     // angles uniform in [-pi, pi), else 0
+    std::uint64_t seed = 1;
+    double wall_thickness = 1.0;
+};
+
 struct Scene {
     std::string file; // as given on the command line, for messages
     std::string name;
@@ -96,12 +115,16 @@ struct Scene {
     double dt = 0.0;
     double duration = 0.0;
     SolverSettings solver;
+    // The file's "bodies", then, with a "gas" block, its four walls and its
+    // count bodies (gas.h, generate_gas).
     std::vector<SceneBody> bodies;
+    std::optional<GasSpec> gas;            // the "gas" block, when there is one
+    std::size_t listed_bodies = 0;         // how many of `bodies` the file's "bodies" array lists
     Tolerances tolerances;                 // "tolerance": per channel, empty when not given
     std::vector<Expectation> expectations; // "expectations", in file order
     Box2dSettings box2d;                   // "box2d": how to compare with Box2D
-    std::string sha256;                // of the canonical JSON of the file's content
-    std::vector<std::string> warnings; // e.g. a polygon recentred on its centroid
+    std::string sha256;                    // of the canonical JSON of the file's content
+    std::vector<std::string> warnings;     // e.g. a polygon recentred on its centroid
 };
 
 // Reads, parses and validates a scene file; throws InputError naming the file
@@ -122,8 +145,10 @@ long long step_count(const Scene& scene);
 const char* integrator_name(Integrator integrator);
 const char* toi_method_name(TimeOfImpactMethod method);
 const char* contact_mode_name(ContactMode mode);
+const char* stepping_name(Stepping stepping);
 // false when the name is unknown
 bool integrator_from_name(const std::string& name, Integrator& out);
 bool toi_method_from_name(const std::string& name, TimeOfImpactMethod& out);
+bool stepping_from_name(const std::string& name, Stepping& out);
 
 } // namespace impulse::harness
