@@ -93,4 +93,47 @@ void mark_fronts(std::vector<SweepPoint>& points);
 // "impulse verlet/secant" or "box2d".
 std::string sweep_family(const SweepPoint& point);
 
+// The two targets against Box2D:
+//  1. at Box2D's cost at 60 Hz or less, an error at least target_error_ratio
+//     times smaller;
+//  2. the impulse points' Pareto front (every family together) dominates
+//     Box2D's front everywhere.
+// Costs are the run's wall-clock medians, so a verdict near its threshold can
+// flip from one run to the next: cost_margin says how near target 1 is.
+inline constexpr double target_error_ratio = 1e6;
+
+// Box2D's settings at 60 Hz: the point target 1 measures against.
+inline constexpr double target_box2d_dt = 1.0 / 60.0;
+inline constexpr int target_box2d_substeps = 1;
+inline constexpr int target_box2d_velocity_iterations = 8;
+inline constexpr int target_box2d_position_iterations = 3;
+
+struct SweepTargets {
+    // Some Box2D point succeeded: without one neither target is measured.
+    bool measured = false;
+
+    // Target 1. Indices are into SweepResult::points.
+    bool box2d_60hz_found = false; // the grid has Box2D at target_box2d_* settings
+    std::size_t box2d_60hz = 0;
+    bool error_target_measured = false; // found and it succeeded
+    bool impulse_found = false;         // a successful impulse point costs no more
+    std::size_t best_impulse = 0;       // of those, the smallest error (then cost)
+    bool impulse_error_zero = false;    // its error is 0: the ratio uses sweep_error_floor
+    double error_ratio = 0.0;           // Box2D's error / the impulse point's
+    double cost_margin = 0.0;           // Box2D's cost / the impulse point's (>= 1)
+    bool error_target_met = false;
+
+    // Target 2: Box2D's front in cost order, how many of its points some
+    // impulse point dominates, and the cheapest that none does.
+    std::size_t box2d_front_size = 0;
+    std::size_t box2d_front_dominated = 0;
+    bool undominated_found = false;
+    std::size_t first_undominated = 0;
+    bool front_target_met = false;
+};
+
+// Judges both targets on the result's successful points; a pure function of
+// the result (the fronts are recomputed, not read from on_front).
+SweepTargets evaluate_targets(const SweepResult& result);
+
 } // namespace impulse::harness

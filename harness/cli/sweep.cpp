@@ -46,6 +46,13 @@ method, and Box2D). A grid point the engine refuses (a Zeno cascade, a resting
 contact) is reported as failed with its reason. SCENE is a path or the name of
 a canonical scene under ROOT/harness/scenes/.
 
+After the table (and under "targets" in --json), the two targets against
+Box2D, judged on this run's wall-clock costs: at the cost of Box2D at dt 1/60,
+1 sub-step, 8/3 iterations or less, an impulse error at least 1e6 times smaller
+(with how many times cheaper the chosen impulse point is, to show how near
+noise is to flipping it); and the impulse points' Pareto front (all families
+together) dominating every point of Box2D's.
+
   --dt LIST                 time steps in seconds (default 1/30,1/60,...,1/960)
   --integrator LIST         euler,symplectic-euler,verlet,rk4 (default all)
   --toi LIST                bisection,secant (default both)
@@ -193,6 +200,96 @@ std::string dt_text(double dt) {
     return format_double(dt);
 }
 
+// "Box2D 1/60 sub 1, it 8/3", "verlet/secant 1/30 tol 1e-12".
+std::string point_name(const SweepPoint& p) {
+    const std::string method =
+        p.box2d ? std::string("Box2D")
+                : std::string(integrator_name(p.integrator)) + "/" + toi_method_name(p.toi);
+    return method + " " + dt_text(p.dt) + " " + settings_of(p);
+}
+
+std::string error_and_cost(const SweepPoint& p) {
+    return "error " + sci(p.error) + " at " + sci(p.cost_median) + " s/s";
+}
+
+// Few digits where noise could matter (near 1x), none where it cannot.
+std::string times(double ratio) {
+    if (!std::isfinite(ratio) || ratio >= 1e4) {
+        return sci(ratio, 1) + "x";
+    }
+    return fixed(ratio, ratio < 10.0 ? 1 : 0) + "x";
+}
+
+// Why no target was measured, or empty when they were.
+std::string targets_not_measured(const SweepResult& r, const SweepTargets& t) {
+    if (t.measured) {
+        return "";
+    }
+    const bool any_box2d =
+        std::any_of(r.points.begin(), r.points.end(), [](const SweepPoint& p) { return p.box2d; });
+    return any_box2d ? "not measured (every Box2D point failed)" : "not measured (no Box2D points)";
+}
+
+// Target 1 in one sentence.
+std::string error_target_text(const SweepResult& r, const SweepTargets& t) {
+    std::string text = "error at Box2D's 60 Hz cost: ";
+    if (!t.box2d_60hz_found) {
+        return text + "not measured (the grid has no Box2D point at dt 1/60, " +
+               std::to_string(target_box2d_substeps) + " sub-step, " +
+               std::to_string(target_box2d_velocity_iterations) + "/" +
+               std::to_string(target_box2d_position_iterations) + " iterations)";
+    }
+    const SweepPoint& b = r.points[t.box2d_60hz];
+    if (!t.error_target_measured) {
+        return text + "not measured (" + point_name(b) + " failed: " + b.failure + ")";
+    }
+    text += point_name(b) + ": " + error_and_cost(b) + "; ";
+    const std::string target = " (target >= " + sci(target_error_ratio, 0) + ")";
+    if (!t.impulse_found) {
+        return text + "no impulse point costs that little: not met" + target;
+    }
+    const SweepPoint& p = r.points[t.best_impulse];
+    text += "best impulse at <= that cost: " + point_name(p) + ", ";
+    if (t.impulse_error_zero) {
+        text += "error 0 (below the floor " + sci(sweep_error_floor, 0) + ", taken as it) at " +
+                sci(p.cost_median) + " s/s";
+    } else {
+        text += error_and_cost(p);
+    }
+    text += " (" + times(t.cost_margin) +
+            " cheaper): " + (t.impulse_error_zero ? "at least " : "") + sci(t.error_ratio, 1) +
+            " times smaller: " + (t.error_target_met ? "met" : "not met") + target;
+    return text;
+}
+
+// Target 2 in one sentence.
+std::string front_target_text(const SweepResult& r, const SweepTargets& t) {
+    std::string text = "Pareto front: impulse's front dominates ";
+    if (t.front_target_met) {
+        return text +
+               (t.box2d_front_size == 1
+                    ? std::string("Box2D's only front point")
+                    : "all " + std::to_string(t.box2d_front_size) + " of Box2D's front points") +
+               ": met";
+    }
+    const SweepPoint& b = r.points[t.first_undominated];
+    return text + std::to_string(t.box2d_front_dominated) + " of Box2D's " +
+           std::to_string(t.box2d_front_size) + " front point" +
+           (t.box2d_front_size == 1 ? "" : "s") + "; not " + point_name(b) + " (" +
+           error_and_cost(b) + "): not met";
+}
+
+void write_targets(const SweepResult& r, std::ostream& out) {
+    const SweepTargets t = evaluate_targets(r);
+    if (!t.measured) {
+        out << "targets: " << targets_not_measured(r, t) << "\n";
+        return;
+    }
+    out << "targets (wall-clock costs of this run; noisy):\n";
+    out << "  " << error_target_text(r, t) << "\n";
+    out << "  " << front_target_text(r, t) << "\n";
+}
+
 void write_table(const SweepResult& r, std::ostream& out) {
     out << "sweep: " << r.scene << ", " << r.points.size() << " grid points, " << r.repeats
         << " repeats each, " << format_double(r.simulated_duration) << " s simulated\n";
@@ -222,11 +319,45 @@ void write_table(const SweepResult& r, std::ostream& out) {
     for (const SweepPoint& p : r.points) {
         failed += p.ok ? 0 : 1;
     }
-    out << "\n" << r.points.size() - failed << " points measured, " << failed << " failed\n";
+    out << "\n" << r.points.size() - failed << " points measured, " << failed << " failed\n\n";
+    write_targets(r, out);
 }
 
 nlohmann::json number_or_null(double value) {
     return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+nlohmann::json index_or_null(bool found, std::size_t index) {
+    return found ? nlohmann::json(index) : nlohmann::json(nullptr);
+}
+
+// The targets, with indices into "points" and the table's sentences.
+nlohmann::json targets_json(const SweepResult& r) {
+    const SweepTargets t = evaluate_targets(r);
+    if (!t.measured) {
+        return {{"measured", false}, {"verdict", targets_not_measured(r, t)}};
+    }
+    const bool have_impulse = t.error_target_measured && t.impulse_found;
+    nlohmann::json error_target = {
+        {"measured", t.error_target_measured},
+        {"box2d_point", index_or_null(t.box2d_60hz_found, t.box2d_60hz)},
+        {"impulse_point", index_or_null(have_impulse, t.best_impulse)},
+        {"impulse_error_zero", t.impulse_error_zero},
+        {"error_ratio", have_impulse ? number_or_null(t.error_ratio) : nullptr},
+        {"cost_margin", have_impulse ? number_or_null(t.cost_margin) : nullptr},
+        {"required_ratio", target_error_ratio},
+        {"met", t.error_target_met},
+        {"verdict", error_target_text(r, t)}};
+    nlohmann::json front_target = {
+        {"box2d_front_points", t.box2d_front_size},
+        {"dominated", t.box2d_front_dominated},
+        {"first_undominated", index_or_null(t.undominated_found, t.first_undominated)},
+        {"met", t.front_target_met},
+        {"verdict", front_target_text(r, t)}};
+    return {{"measured", true},
+            {"costs", "wall-clock medians of this run; noisy"},
+            {"error_at_box2d_60hz_cost", std::move(error_target)},
+            {"pareto_front", std::move(front_target)}};
 }
 
 nlohmann::json to_json(const SweepResult& r) {
@@ -266,7 +397,8 @@ nlohmann::json to_json(const SweepResult& r) {
             {"simulated_duration", r.simulated_duration},
             {"repeats", r.repeats},
             {"cost_unit", "seconds per simulated second"},
-            {"points", std::move(points)}};
+            {"points", std::move(points)},
+            {"targets", targets_json(r)}};
 }
 
 std::string csv_field(const std::string& text) {
@@ -372,14 +504,20 @@ std::string sweep_svg(const SweepResult& r) {
     s << "<rect x=\"" << fixed(left, 1) << "\" y=\"" << fixed(top, 1) << "\" width=\""
       << fixed(plot_w, 1) << "\" height=\"" << fixed(plot_h, 1)
       << "\" fill=\"none\" stroke=\"#333\"/>\n";
-    for (double d = x0; d <= x1 + 0.5; d += 1.0) {
+    // Integer tick counts: the ends are whole decades, and a floating-point
+    // loop counter could gain or lose a tick to rounding.
+    const int x_ticks = static_cast<int>(std::lround(x1 - x0));
+    for (int k = 0; k <= x_ticks; ++k) {
+        const double d = x0 + k;
         s << "<line x1=\"" << fixed(px(d), 1) << "\" y1=\"" << fixed(top, 1) << "\" x2=\""
           << fixed(px(d), 1) << "\" y2=\"" << fixed(top + plot_h, 1) << "\" stroke=\"#ddd\"/>\n";
         s << "<text x=\"" << fixed(px(d), 1) << "\" y=\"" << fixed(top + plot_h + 16, 1)
           << "\" text-anchor=\"middle\">1e" << fixed(d, 0) << "</text>\n";
     }
     const double ystep = y1 - y0 > 12 ? 2.0 : 1.0;
-    for (double d = y0; d <= y1 + 0.5; d += ystep) {
+    const int y_ticks = static_cast<int>(std::lround(y1 - y0)) / static_cast<int>(ystep);
+    for (int k = 0; k <= y_ticks; ++k) {
+        const double d = y0 + k * ystep;
         s << "<line x1=\"" << fixed(left, 1) << "\" y1=\"" << fixed(py(d), 1) << "\" x2=\""
           << fixed(left + plot_w, 1) << "\" y2=\"" << fixed(py(d), 1) << "\" stroke=\"#ddd\"/>\n";
         s << "<text x=\"" << fixed(left - 6, 1) << "\" y=\"" << fixed(py(d) + 4, 1)
