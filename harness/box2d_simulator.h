@@ -5,11 +5,11 @@
 // collision only where the scene asks for it.
 #pragma once
 
+#include "simulator.h"
+
 #include <memory>
 #include <string>
 #include <vector>
-
-#include "simulator.h"
 
 namespace impulse::harness {
 

@@ -1,17 +1,17 @@
 // Checking a run against the answers its scene declares.
 #pragma once
 
-#include <string>
-#include <vector>
-
 #include "scene.h"
 #include "trajectory.h"
+
+#include <string>
+#include <vector>
 
 namespace impulse::harness {
 
 struct ExpectationResult {
-    std::string path;   // "expectations[1]"
-    std::string what;   // "drop of 'box': impact 3 time", one line
+    std::string path; // "expectations[1]"
+    std::string what; // "drop of 'box': impact 3 time", one line
     bool passed = true;
     double expected = 0.0;
     double actual = 0.0;

@@ -3,12 +3,12 @@
 // from any simulator's trajectory of a scene.
 #pragma once
 
+#include "scene.h"
+#include "trajectory.h"
+
 #include <optional>
 #include <string>
 #include <vector>
-
-#include "scene.h"
-#include "trajectory.h"
 
 namespace impulse::harness {
 

@@ -2,33 +2,33 @@
 // page per run, written to `check --report DIR`; and JUnit XML for CI.
 #pragma once
 
-#include <optional>
-#include <string>
-#include <vector>
-
 #include "compare.h"
 #include "expectations.h"
 #include "scene.h"
 #include "trajectory.h"
+
+#include <optional>
+#include <string>
+#include <vector>
 
 namespace impulse::harness {
 
 // The outcome of checking one scene.
 struct SceneCheck {
     enum class Status { passed, failed, error };
-    std::string name;       // scene name (or file when it did not load)
+    std::string name; // scene name (or file when it did not load)
     std::string scene_file;
     std::string golden_file;
     Status status = Status::passed;
-    bool stale = false;     // the golden's scene_sha256 differs from the scene's
-    std::string message;    // one sentence for failed / error
-    std::string details;    // multi-line text: divergences, failed expectations
+    bool stale = false;  // the golden's scene_sha256 differs from the scene's
+    std::string message; // one sentence for failed / error
+    std::string details; // multi-line text: divergences, failed expectations
     std::optional<Comparison> comparison;
     std::vector<ExpectationResult> expectations;
     std::optional<Scene> scene;
     std::optional<Trajectory> gold;
     std::optional<Trajectory> value;
-    double seconds = 0.0;   // wall time of this scene's check
+    double seconds = 0.0; // wall time of this scene's check
 };
 
 std::string junit_xml(const std::vector<SceneCheck>& checks);
