@@ -199,7 +199,8 @@ Manifold with_tolerance(Manifold m, double contact_tolerance) {
 } // namespace
 
 Manifold collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                 double contact_tolerance) {
+                 double contact_tolerance, VertexNormal vertex_normal) {
+    (void)vertex_normal; // TODO(vertex/vertex): the bisector normal
     if (a.type == ShapeType::polygon && b.type == ShapeType::polygon) {
         return collide_polygons(to_world(a.polygon, xa), to_world(b.polygon, xb),
                                 contact_tolerance);

@@ -4,6 +4,7 @@
 #include "contact.h"
 #include "rotation.h"
 #include "shape.h"
+#include "solver_settings.h"
 
 #include <array>
 
@@ -28,6 +29,7 @@ double separation(const Shape& a, const Transform& xa, const Shape& b, const Tra
 // The contact points of a pair whose separation is within contact_tolerance:
 // only points at most contact_tolerance apart are reported.
 Manifold collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
-                 double contact_tolerance);
+                 double contact_tolerance,
+                 VertexNormal vertex_normal = VertexNormal::reference_face);
 
 } // namespace impulse

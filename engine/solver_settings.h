@@ -15,8 +15,20 @@ inline constexpr int time_of_impact_method_count = 2;
 static_assert(static_cast<int>(TimeOfImpactMethod::secant) + 1 == time_of_impact_method_count,
               "time_of_impact_method_count must follow the last TimeOfImpactMethod");
 
-enum class ContactMode { single };
-inline constexpr int contact_mode_count = 1;
+// single: the seed's, one point of one pair at a time. simultaneous: every
+// touching point of every touching pair at the collision time solved together
+// (Newton's law at each point, non-negative impulses: a small LCP;
+// docs/engine.md, "Simultaneous contact").
+enum class ContactMode { single, simultaneous };
+inline constexpr int contact_mode_count = 2;
+
+// The normal of a vertex/vertex contact. reference_face: the seed's, treated
+// as vertex/edge against the reference face the separating axes pick.
+// bisector: the bisector of the cone of normals both vertices admit, which
+// does not depend on which face happens to separate most (docs/engine.md,
+// "Vertex/vertex").
+enum class VertexNormal { reference_face, bisector };
+inline constexpr int vertex_normal_count = 2;
 
 // world: the seed's loop, where a collision anywhere rewinds and re-integrates
 // every body. local: each body keeps its own clock within the step, so a
@@ -33,7 +45,12 @@ struct SolverSettings {
     double contact_tolerance = 1e-9; // metres
     ContactMode contacts = ContactMode::single;
     Stepping stepping = Stepping::world;
+    VertexNormal vertex_normal = VertexNormal::reference_face;
+    // Catch tunnelling: every pair's motion over the step is swept by
+    // conservative advancement (docs/engine.md, "Tunnelling").
     bool ccd = false;
+    // End Zeno cascades and hold resting bodies with contact forces
+    // (docs/engine.md, "Resting contact").
     bool resting = false;
     // Work bounds that turn a stall into a clear error instead of a hang.
     int max_halvings = 200; // iterations per time-of-impact search, whatever the method

@@ -1,7 +1,9 @@
 #include "world.h"
 
 #include "configuration.h"
+#include "continuous_collision.h"
 #include "local_stepping.h"
+#include "simultaneous_contact.h"
 #include "single_contact.h"
 #include "time_of_impact.h"
 
@@ -31,6 +33,31 @@ World make_world(std::vector<Body> bodies, Vec2 gravity, double restitution,
 
 namespace {
 
+// The contact model at a collision found between `pair` at `time`.
+std::optional<StepError> resolve_contacts(World& world, const Pair& pair, double time,
+                                          std::vector<CollisionEvent>& events) {
+    switch (world.solver.contacts) {
+    case ContactMode::single:
+        if (!resolve_single_contact(world, pair, time, events)) {
+            return StepError{StepFailure::resting_contact, time, pair.a, pair.b};
+        }
+        return std::nullopt;
+    case ContactMode::simultaneous: {
+        const SimultaneousResult r = resolve_simultaneous_contacts(world, time, events);
+        switch (r.outcome) {
+        case SimultaneousOutcome::resolved:
+            return std::nullopt;
+        case SimultaneousOutcome::none_approaching:
+            return StepError{StepFailure::resting_contact, time, pair.a, pair.b};
+        case SimultaneousOutcome::unsolved:
+            return StepError{StepFailure::contact_problem_unsolved, time, r.body_a, r.body_b};
+        }
+        break;
+    }
+    }
+    return StepError{StepFailure::resting_contact, time, pair.a, pair.b};
+}
+
 // The seed's loop: every collision rewinds the whole world to its time and
 // integrates every body again from there.
 std::optional<StepError> step_world(World& world, double t0, double dt,
@@ -43,9 +70,24 @@ std::optional<StepError> step_world(World& world, double t0, double dt,
     int collisions = 0;
     for (;;) {
         // 1. Integrate every body forward by the rest of the step.
-        const double h = dt - elapsed;
+        double h = dt - elapsed;
         advance_all(world, start, h, trial);
-        const int pair_at_h = first_interpenetrating_pair(world, trial);
+        int pair_at_h = first_interpenetrating_pair(world, trial);
+        if (world.solver.ccd) {
+            // Sweep the whole rest of the step, not only its end: the first
+            // sample that interpenetrates bounds the search instead of h.
+            const SweptContact swept = first_swept_contact(world, start, h);
+            if (!swept.converged) {
+                const Pair& stalled = world.pairs[static_cast<std::size_t>(swept.stalled_pair)];
+                return StepError{StepFailure::sweep_not_converged, t0 + elapsed, stalled.a,
+                                 stalled.b};
+            }
+            if (swept.pair >= 0 && swept.time < h) {
+                h = swept.time;
+                advance_all(world, start, h, trial);
+            }
+            pair_at_h = swept.pair;
+        }
         if (pair_at_h < 0) {
             commit(world, trial);
             return std::nullopt;
@@ -61,8 +103,8 @@ std::optional<StepError> step_world(World& world, double t0, double dt,
         }
 
         // 3. Resolve the collision there, accept it, and go on with the rest of the step.
-        if (!resolve_single_contact(world, pair, t0 + elapsed, events)) {
-            return StepError{StepFailure::resting_contact, t0 + elapsed, pair.a, pair.b};
+        if (std::optional<StepError> error = resolve_contacts(world, pair, t0 + elapsed, events)) {
+            return error;
         }
         ++world.work.collisions;
         if (++collisions > world.solver.max_collisions_per_step) {

@@ -66,10 +66,12 @@ World make_world(std::vector<Body> bodies, Vec2 gravity, double restitution,
                  const SolverSettings& solver);
 
 enum class StepFailure {
-    toi_not_converged,   // the bisection could not reach toi_tolerance
-    too_many_collisions, // more than solver.max_collisions_per_step within one step
-                         // (local stepping: for one body)
-    resting_contact,     // touching, interpenetrating next, yet not approaching
+    toi_not_converged,        // the bisection could not reach toi_tolerance
+    too_many_collisions,      // more than solver.max_collisions_per_step within one step
+                              // (local stepping: for one body)
+    resting_contact,          // touching, interpenetrating next, yet not approaching
+    contact_problem_unsolved, // contacts: simultaneous: the impulse LCP found no solution
+    sweep_not_converged,      // ccd: conservative advancement needed more than max_halvings steps
 };
 
 struct StepError {

@@ -55,6 +55,9 @@ class ImpulseSimulator final : public Simulator {
         if (s.stepping != Stepping::world) {
             settings.emplace_back("stepping", quoted(stepping_name(s.stepping)));
         }
+        if (s.vertex_normal != VertexNormal::reference_face) {
+            settings.emplace_back("vertex_normal", quoted(vertex_normal_name(s.vertex_normal)));
+        }
         return settings;
     }
 
@@ -106,6 +109,15 @@ class ImpulseSimulator final : public Simulator {
                    " (touching, not approaching, interpenetrating just after), which the"
                    " seed's collision-only model cannot resolve; end the scene before the"
                    " bounces die out";
+        case StepFailure::contact_problem_unsolved:
+            return "the simultaneous contact problem around " + a + " and " + b + " at " + at +
+                   " has no solution the solver could find (docs/engine.md, \"Simultaneous"
+                   " contact\"); use contacts \"single\" for this scene";
+        case StepFailure::sweep_not_converged:
+            return "the swept test between " + a + " and " + b + " at " + at +
+                   " needed more than " + std::to_string(scene_.solver.max_halvings) +
+                   " advancement steps: the pair moves or spins too fast for its distance to"
+                   " be bounded (a tunnel the engine cannot rule out); use a smaller dt";
         }
         return "the simulation stopped at " + at;
     }

@@ -370,18 +370,10 @@ void read_time(const Node& root, Scene& scene) {
     }
 }
 
-// For the solver settings that have a single value in this version: the key
-// is accepted so scenes can state it, but anything else is refused with why.
-void require_only(const Node& node, const Json& only, const std::string& why) {
-    if (node.json() != only) {
-        node.fail("must be " + only.dump() + ": " + why);
-    }
-}
-
 void read_solver(const Node& node, SolverSettings& solver) {
     require_object(node);
     reject_unknown_keys(node, {"integrator", "toi", "toi_tolerance", "contact_tolerance",
-                               "contacts", "stepping", "ccd", "resting"});
+                               "contacts", "stepping", "vertex_normal", "ccd", "resting"});
     if (const std::optional<Node> integrator = optional_member(node, "integrator")) {
         if (!integrator->json().is_string() ||
             !integrator_from_name(integrator->json().get<std::string>(), solver.integrator)) {
@@ -400,9 +392,6 @@ void read_solver(const Node& node, SolverSettings& solver) {
     solver.toi_tolerance = read_positive_or(node, "toi_tolerance", solver.toi_tolerance);
     solver.contact_tolerance =
         read_positive_or(node, "contact_tolerance", solver.contact_tolerance);
-    if (const std::optional<Node> contacts = optional_member(node, "contacts")) {
-        require_only(*contacts, "single", "this version models one contact point at a time");
-    }
     if (const std::optional<Node> stepping = optional_member(node, "stepping")) {
         if (!stepping->json().is_string() ||
             !stepping_from_name(stepping->json().get<std::string>(), solver.stepping)) {
@@ -410,11 +399,38 @@ void read_solver(const Node& node, SolverSettings& solver) {
                            describe(stepping->json()));
         }
     }
-    if (const std::optional<Node> ccd = optional_member(node, "ccd")) {
-        require_only(*ccd, false, "this version does not catch tunnelling between steps");
+    // Local stepping resolves one pair at a time by design; the modes below
+    // look at every touching pair or every pair's whole motion at once.
+    const auto refuse_with_local = [&](const Node& setting) {
+        if (solver.stepping == Stepping::local) {
+            setting.fail("is not available with \"stepping\": \"local\" in this version (local "
+                         "stepping looks at one pair at a time); use \"stepping\": \"world\"");
+        }
+    };
+    if (const std::optional<Node> contacts = optional_member(node, "contacts")) {
+        if (!contacts->json().is_string() ||
+            !contact_mode_from_name(contacts->json().get<std::string>(), solver.contacts)) {
+            contacts->fail("must be \"single\" (the seed's) or \"simultaneous\", got " +
+                           describe(contacts->json()));
+        }
+        if (solver.contacts != ContactMode::single) {
+            refuse_with_local(*contacts);
+        }
     }
-    if (const std::optional<Node> resting = optional_member(node, "resting")) {
-        require_only(*resting, false, "this version does not model resting contact");
+    if (const std::optional<Node> normal = optional_member(node, "vertex_normal")) {
+        if (!normal->json().is_string() ||
+            !vertex_normal_from_name(normal->json().get<std::string>(), solver.vertex_normal)) {
+            normal->fail("must be \"reference-face\" (the seed's) or \"bisector\", got " +
+                         describe(normal->json()));
+        }
+    }
+    solver.ccd = read_bool_or(node, "ccd", solver.ccd);
+    if (solver.ccd) {
+        refuse_with_local(*optional_member(node, "ccd"));
+    }
+    solver.resting = read_bool_or(node, "resting", solver.resting);
+    if (solver.resting) {
+        refuse_with_local(*optional_member(node, "resting"));
     }
 }
 
@@ -1491,8 +1507,42 @@ const char* contact_mode_name(ContactMode mode) {
     switch (mode) {
     case ContactMode::single:
         return "single";
+    case ContactMode::simultaneous:
+        return "simultaneous";
     }
     return "unknown";
+}
+
+bool contact_mode_from_name(const std::string& name, ContactMode& out) {
+    for (int i = 0; i < contact_mode_count; ++i) {
+        const auto candidate = static_cast<ContactMode>(i);
+        if (name == contact_mode_name(candidate)) {
+            out = candidate;
+            return true;
+        }
+    }
+    return false;
+}
+
+const char* vertex_normal_name(VertexNormal normal) {
+    switch (normal) {
+    case VertexNormal::reference_face:
+        return "reference-face";
+    case VertexNormal::bisector:
+        return "bisector";
+    }
+    return "unknown";
+}
+
+bool vertex_normal_from_name(const std::string& name, VertexNormal& out) {
+    for (int i = 0; i < vertex_normal_count; ++i) {
+        const auto candidate = static_cast<VertexNormal>(i);
+        if (name == vertex_normal_name(candidate)) {
+            out = candidate;
+            return true;
+        }
+    }
+    return false;
 }
 
 const char* stepping_name(Stepping stepping) {

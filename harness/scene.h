@@ -146,9 +146,12 @@ const char* integrator_name(Integrator integrator);
 const char* toi_method_name(TimeOfImpactMethod method);
 const char* contact_mode_name(ContactMode mode);
 const char* stepping_name(Stepping stepping);
+const char* vertex_normal_name(VertexNormal normal);
 // false when the name is unknown
 bool integrator_from_name(const std::string& name, Integrator& out);
 bool toi_method_from_name(const std::string& name, TimeOfImpactMethod& out);
 bool stepping_from_name(const std::string& name, Stepping& out);
+bool contact_mode_from_name(const std::string& name, ContactMode& out);
+bool vertex_normal_from_name(const std::string& name, VertexNormal& out);
 
 } // namespace impulse::harness

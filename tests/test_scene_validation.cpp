@@ -580,22 +580,51 @@ TEST_CASE("solver", "[scene]") {
         require_rejected(scene_with(R"("solver": {"contact_tolerance": -1e-9},)"),
                          "solver.contact_tolerance", "must be > 0, got -1e-09");
     }
-    SECTION("simultaneous contacts") {
-        require_rejected(scene_with(R"("solver": {"contacts": "simultaneous"},)"),
-                         "solver.contacts",
-                         "must be \"single\": this version models one contact point at a time");
+    SECTION("an unknown contact model") {
+        require_rejected(scene_with(R"("solver": {"contacts": "all"},)"), "solver.contacts",
+                         "must be \"single\" (the seed's) or \"simultaneous\", got \"all\"");
     }
-    SECTION("ccd on") {
-        require_rejected(scene_with(R"("solver": {"ccd": true},)"), "solver.ccd",
-                         "must be false: this version");
+    SECTION("an unknown vertex normal") {
+        require_rejected(scene_with(R"("solver": {"vertex_normal": "average"},)"),
+                         "solver.vertex_normal", "must be \"reference-face\" (the seed's)");
     }
     SECTION("ccd not a bool") {
-        require_rejected(scene_with(R"("solver": {"ccd": "no"},)"), "solver.ccd", "must be false");
+        require_rejected(scene_with(R"("solver": {"ccd": "no"},)"), "solver.ccd",
+                         "must be true or false");
     }
-    SECTION("resting on") {
-        require_rejected(scene_with(R"("solver": {"resting": true},)"), "solver.resting",
-                         "must be false: this version");
+    SECTION("resting not a bool") {
+        require_rejected(scene_with(R"("solver": {"resting": 1},)"), "solver.resting",
+                         "must be true or false");
     }
+    SECTION("simultaneous contacts with local stepping") {
+        require_rejected(
+            scene_with(R"("solver": {"stepping": "local", "contacts": "simultaneous"},)"),
+            "solver.contacts", "is not available with \"stepping\": \"local\"");
+    }
+    SECTION("ccd with local stepping") {
+        require_rejected(scene_with(R"("solver": {"stepping": "local", "ccd": true},)"),
+                         "solver.ccd", "is not available with \"stepping\": \"local\"");
+    }
+    SECTION("resting with local stepping") {
+        require_rejected(scene_with(R"("solver": {"stepping": "local", "resting": true},)"),
+                         "solver.resting", "is not available with \"stepping\": \"local\"");
+    }
+}
+
+TEST_CASE("the models past the seed are one setting away", "[scene]") {
+    const Scene scene = parse_scene(
+        scene_with(R"("solver": {"contacts": "simultaneous", "vertex_normal": "bisector",
+                                 "ccd": true, "resting": true},)"),
+        test_file);
+    CHECK(scene.solver.contacts == impulse::ContactMode::simultaneous);
+    CHECK(scene.solver.vertex_normal == impulse::VertexNormal::bisector);
+    CHECK(scene.solver.ccd);
+    CHECK(scene.solver.resting);
+    const Scene seed = parse_scene(scene_with(""), test_file);
+    CHECK(seed.solver.contacts == impulse::ContactMode::single);
+    CHECK(seed.solver.vertex_normal == impulse::VertexNormal::reference_face);
+    CHECK_FALSE(seed.solver.ccd);
+    CHECK_FALSE(seed.solver.resting);
 }
 
 // ---------------------------------------------------------------- rejected: bodies
