@@ -1,5 +1,7 @@
 #include "manifold.h"
 
+#include <optional>
+
 namespace impulse {
 
 namespace {
@@ -50,7 +52,129 @@ FaceSeparation max_face_separation(const WorldPolygon& a, const WorldPolygon& b)
 // landing on static ground (B) takes the ground's normal; ties never flip.
 constexpr double reference_face_bias = 0.1; // of contact_tolerance
 
-Manifold collide_polygons(const WorldPolygon& a, const WorldPolygon& b, double contact_tolerance) {
+// The cone of outward normals at vertex i of a counter-clockwise polygon: the
+// directions from the normal of the edge ending at i, counter-clockwise to the
+// normal of the edge starting there (less than half a turn, the polygon being
+// strictly convex). They are the directions along which the vertex is the
+// polygon's extreme point, so a plane with such a normal supports it there.
+struct NormalCone {
+    Vec2 from;
+    Vec2 to;
+};
+
+NormalCone vertex_cone(const WorldPolygon& p, int i) {
+    return {p.normals[(i + p.count - 1) % p.count], p.normals[i]};
+}
+
+NormalCone negated(NormalCone cone) {
+    return {-cone.from, -cone.to}; // a half turn keeps the counter-clockwise order
+}
+
+bool in_cone(Vec2 u, const NormalCone& cone) {
+    return cross(cone.from, u) >= 0.0 && cross(u, cone.to) >= 0.0;
+}
+
+int nearest_vertex(const WorldPolygon& p, Vec2 x) {
+    int nearest = 0;
+    for (int i = 1; i < p.count; ++i) {
+        if (length_squared(p.vertices[i] - x) < length_squared(p.vertices[nearest] - x)) {
+            nearest = i;
+        }
+    }
+    return nearest;
+}
+
+// Vertex/vertex: vertex ia of A touches vertex ib of B. A normal n (toward A)
+// separates the two corners when B's corner is extreme along n and A's along
+// -n: n in B's vertex cone and in A's negated one. Two arcs of less than half a
+// turn meet in at most one arc, from the later of their starts to the earlier
+// of their ends; the normal is its bisector. It depends only on the two
+// vertices, not on which face the separating axes happened to pick (the
+// seed's arbitrary choice), so it is the same whichever body is A, turns with
+// the configuration, and lies on a line of symmetry of a symmetric contact.
+// An empty intersection (interpenetration by rounding) gives nothing.
+std::optional<Vec2> vertex_vertex_normal(const WorldPolygon& a, int ia, const WorldPolygon& b,
+                                         int ib) {
+    const NormalCone cb = vertex_cone(b, ib);
+    const NormalCone ca = negated(vertex_cone(a, ia));
+    Vec2 from, to;
+    if (in_cone(ca.from, cb)) {
+        from = ca.from;
+    } else if (in_cone(cb.from, ca)) {
+        from = cb.from;
+    } else {
+        return std::nullopt;
+    }
+    if (in_cone(ca.to, cb)) {
+        to = ca.to;
+    } else if (in_cone(cb.to, ca)) {
+        to = cb.to;
+    } else {
+        return std::nullopt;
+    }
+    if (cross(from, to) < 0.0) {
+        return std::nullopt;
+    }
+    const Vec2 sum = from + to;
+    const double norm = length(sum);
+    if (!(norm > 0.0)) {
+        return std::nullopt;
+    }
+    return (1.0 / norm) * sum;
+}
+
+// Turns m into a vertex/vertex contact when it is one: a vertex of the
+// incident polygon sits (within contact_tolerance) on an end vertex of the
+// reference face, and the clipped incident edge touches the face nowhere else.
+// A point inside the face is vertex/edge and two points apart are edge/edge:
+// both keep the face normal. Two kept points at the one vertex happen when the
+// incident edge lies along the reference face's line and meets it only at the
+// shared corner (the clipping leaves a sliver of rounding width): still one
+// corner against one corner, so one point. When the incident edge misses the
+// face sideways the seed's fallback point is a deepest incident vertex, which
+// for an incident edge parallel to the face is either end, so there only the
+// corner pair counts.
+void vertex_vertex(const WorldPolygon& a, const WorldPolygon& b, bool reference_is_a, int ref_edge,
+                   const Vec2 (&kept)[2], bool missed_sideways, double contact_tolerance,
+                   Manifold& m) {
+    const WorldPolygon& ref = reference_is_a ? a : b;
+    const WorldPolygon& inc = reference_is_a ? b : a;
+    const double tolerance_squared = contact_tolerance * contact_tolerance;
+    // The incident vertex nearest to either end of the reference face.
+    const int next = (ref_edge + 1) % ref.count;
+    const int near_first = nearest_vertex(inc, ref.vertices[ref_edge]);
+    const int near_next = nearest_vertex(inc, ref.vertices[next]);
+    const double d_first = length_squared(inc.vertices[near_first] - ref.vertices[ref_edge]);
+    const double d_next = length_squared(inc.vertices[near_next] - ref.vertices[next]);
+    const int rv = d_first <= d_next ? ref_edge : next;
+    const int iv = d_first <= d_next ? near_first : near_next;
+    if ((d_first <= d_next ? d_first : d_next) > tolerance_squared) {
+        return;
+    }
+    if (!missed_sideways) {
+        for (int i = 0; i < m.point_count; ++i) {
+            if (length_squared(kept[i] - inc.vertices[iv]) > tolerance_squared) {
+                return;
+            }
+        }
+    }
+    const int ia = reference_is_a ? rv : iv;
+    const int ib = reference_is_a ? iv : rv;
+    const std::optional<Vec2> n = vertex_vertex_normal(a, ia, b, ib);
+    if (!n) {
+        return; // the seed's reference face normal stands
+    }
+    // Halfway between the two corners, the gap measured along the new normal;
+    // both the same whichever body is A.
+    const Vec2 va = a.vertices[ia];
+    const Vec2 vb = b.vertices[ib];
+    m.normal = *n;
+    m.point_count = 1;
+    m.points[0] = {0.5 * (va + vb), *n, dot(*n, va - vb)};
+}
+
+Manifold collide_polygons(const WorldPolygon& a, const WorldPolygon& b, double contact_tolerance,
+                          VertexNormal vertex_normal) {
     const FaceSeparation face_a = max_face_separation(a, b);
     const FaceSeparation face_b = max_face_separation(b, a);
 
@@ -123,12 +247,17 @@ Manifold collide_polygons(const WorldPolygon& a, const WorldPolygon& b, double c
         candidates[candidate_count++] = inc.vertices[deepest];
     }
 
+    Vec2 kept[2]; // the candidates behind m.points
     for (int i = 0; i < candidate_count; ++i) {
         const double s = dot(ref_n, candidates[i] - r1);
         if (s <= contact_tolerance) {
+            kept[m.point_count] = candidates[i];
             // The point halfway between the incident vertex and the reference face.
             m.points[m.point_count++] = {candidates[i] - (0.5 * s) * ref_n, m.normal, s};
         }
+    }
+    if (vertex_normal == VertexNormal::bisector && m.point_count > 0) {
+        vertex_vertex(a, b, reference_is_a, ref_edge, kept, t_begin > t_end, contact_tolerance, m);
     }
     return m;
 }
@@ -200,10 +329,9 @@ Manifold with_tolerance(Manifold m, double contact_tolerance) {
 
 Manifold collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb,
                  double contact_tolerance, VertexNormal vertex_normal) {
-    (void)vertex_normal; // TODO(vertex/vertex): the bisector normal
     if (a.type == ShapeType::polygon && b.type == ShapeType::polygon) {
-        return collide_polygons(to_world(a.polygon, xa), to_world(b.polygon, xb),
-                                contact_tolerance);
+        return collide_polygons(to_world(a.polygon, xa), to_world(b.polygon, xb), contact_tolerance,
+                                vertex_normal);
     }
     if (a.type == ShapeType::polygon) {
         // Normal from the polygon A toward the circle B: flip it toward A.

@@ -11,7 +11,7 @@ bool resolve_single_contact(World& world, const Pair& pair, double time,
     Body& b = world.bodies[pair.b];
     ++world.work.narrow_phase_queries;
     const Manifold m = collide(a.shape, transform_of(a.state), b.shape, transform_of(b.state),
-                               world.solver.contact_tolerance);
+                               world.solver.contact_tolerance, world.solver.vertex_normal);
     int chosen = -1;
     for (int i = 0; i < m.point_count; ++i) {
         const Contact& c = m.points[i];
