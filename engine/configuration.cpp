@@ -20,17 +20,30 @@ void commit(World& world, const Configuration& configuration) {
     }
 }
 
+BodyState advance_body(World& world, std::size_t i, const BodyState& from, double h) {
+    const Body& body = world.bodies[i];
+    if (body.is_static()) {
+        return from;
+    }
+    ++world.work.body_advances;
+    if (world.resting_contacts.any) {
+        return advance_under(world.solver.integrator, from, world.resting_contacts.accelerations[i],
+                             body.rotates(), h);
+    }
+    return advance(world.solver.integrator, from, world.gravity, body.rotates(), h);
+}
+
 void advance_all(World& world, const Configuration& from, double h, Configuration& to) {
     to.resize(from.size());
     for (std::size_t i = 0; i < from.size(); ++i) {
-        const Body& body = world.bodies[i];
-        if (body.is_static()) {
-            to[i] = from[i];
-            continue;
-        }
-        ++world.work.body_advances;
-        to[i] = advance(world.solver.integrator, from[i], world.gravity, body.rotates(), h);
+        to[i] = advance_body(world, i, from[i], h);
     }
+}
+
+double interpenetration_floor(const World& world, std::size_t p) {
+    return world.resting_contacts.any && world.resting_contacts.pair_resting[p] != 0
+               ? -world.solver.contact_tolerance
+               : 0.0;
 }
 
 double pair_separation(const World& world, const Configuration& configuration, const Pair& pair) {
@@ -51,7 +64,7 @@ int first_interpenetrating_pair(World& world, const Configuration& configuration
         ++world.work.narrow_phase_queries;
         const Pair& pair = world.pairs[p];
         if (separation(world.bodies[pair.a].shape, xf[pair.a], world.bodies[pair.b].shape,
-                       xf[pair.b]) < 0.0) {
+                       xf[pair.b]) < interpenetration_floor(world, p)) {
             return static_cast<int>(p);
         }
     }

@@ -73,4 +73,38 @@ BodyState advance(Integrator integrator, const BodyState& state, Vec2 gravity, b
     return next;
 }
 
+namespace {
+
+// The angular update under a constant angular acceleration alpha, each
+// integrator's own rule applied to (angle, omega) as to (position, velocity).
+void advance_angle(Integrator integrator, const BodyState& s, double alpha, double h,
+                   BodyState& next) {
+    switch (integrator) {
+    case Integrator::euler:
+        next.angle = s.angle + h * s.angular_velocity;
+        next.angular_velocity = s.angular_velocity + h * alpha;
+        return;
+    case Integrator::symplectic_euler:
+        next.angular_velocity = s.angular_velocity + h * alpha;
+        next.angle = s.angle + h * next.angular_velocity;
+        return;
+    case Integrator::verlet:
+    case Integrator::rk4: // RK4 on (angle, omega)' = (omega, alpha) reduces to the exact quadratic
+        next.angle = s.angle + h * s.angular_velocity + (0.5 * h * h) * alpha;
+        next.angular_velocity = s.angular_velocity + h * alpha;
+        return;
+    }
+}
+
+} // namespace
+
+BodyState advance_under(Integrator integrator, const BodyState& state,
+                        const Acceleration& acceleration, bool rotates, double h) {
+    BodyState next = advance(integrator, state, acceleration.linear, rotates, h);
+    if (rotates && acceleration.angular != 0.0) {
+        advance_angle(integrator, state, acceleration.angular, h, next);
+    }
+    return next;
+}
+
 } // namespace impulse

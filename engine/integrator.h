@@ -12,4 +12,18 @@ namespace impulse {
 BodyState advance(Integrator integrator, const BodyState& state, Vec2 gravity, bool rotates,
                   double h);
 
+// A body's acceleration when more than gravity acts on it: resting contact
+// forces (solver.resting) add a linear and an angular part, both constant
+// over the interval.
+struct Acceleration {
+    Vec2 linear;
+    double angular = 0.0;
+};
+
+// advance() under gravity plus other constant forces, with an angular
+// acceleration too; each integrator treats
+// the angle as it treats the position. With angular = 0 it is advance().
+BodyState advance_under(Integrator integrator, const BodyState& state,
+                        const Acceleration& acceleration, bool rotates, double h);
+
 } // namespace impulse

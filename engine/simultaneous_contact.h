@@ -1,7 +1,8 @@
 // Simultaneous contact (solver.contacts = simultaneous; docs/engine.md,
 // "Simultaneous contact"): every touching point of every touching pair at the
 // collision time is solved together, Newton's law of restitution at each
-// point with non-negative impulses, as one small linear complementarity problem.
+// point with non-negative impulses, as one small linear complementarity problem
+// (the formulation is stated in simultaneous_contact.cpp, the solver in lcp.h).
 #pragma once
 
 #include "world.h"
@@ -23,7 +24,10 @@ struct SimultaneousResult {
 };
 
 // At the bodies' current states: gathers the points of every pair within
-// solver.contact_tolerance, solves for the impulses and applies them.
+// solver.contact_tolerance that approach or touch (points already separating
+// are left out), solves for the impulses, applies them and appends one event
+// per point that took an impulse, in pair and point order. world stepping only
+// (it tests world.pairs).
 SimultaneousResult resolve_simultaneous_contacts(World& world, double time,
                                                  std::vector<CollisionEvent>& events);
 

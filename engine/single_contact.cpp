@@ -1,6 +1,7 @@
 #include "single_contact.h"
 
 #include "manifold.h"
+#include "resting_contact.h"
 #include "restitution.h"
 
 namespace impulse {
@@ -24,7 +25,7 @@ bool resolve_single_contact(World& world, const Pair& pair, double time,
         return false;
     }
     const Contact& c = m.points[chosen];
-    const Impulse impulse = resolve_collision(a, b, c, world.restitution);
+    const Impulse impulse = resolve_collision(a, b, c, effective_restitution(world, a, b, c));
     events.push_back(
         {time, pair.a, pair.b, c.point, c.normal, impulse.j, impulse.vn_before, impulse.vn_after});
     return true;

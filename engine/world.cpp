@@ -69,6 +69,14 @@ std::optional<StepError> step_world(World& world, double t0, double dt,
     double elapsed = 0.0;
     int collisions = 0;
     for (;;) {
+        if (world.solver.resting) {
+            // Which points rest, and the forces that hold them, for this interval.
+            int a = -1;
+            int b = -1;
+            if (!find_resting_contacts(world, a, b)) {
+                return StepError{StepFailure::contact_problem_unsolved, t0 + elapsed, a, b};
+            }
+        }
         // 1. Integrate every body forward by the rest of the step.
         double h = dt - elapsed;
         advance_all(world, start, h, trial);

@@ -6,6 +6,7 @@
 #include "body_clock.h"
 #include "broad_phase.h"
 #include "contact.h"
+#include "resting_contact.h"
 #include "solver_settings.h"
 
 #include <optional>
@@ -52,6 +53,7 @@ struct World {
     WorkCounters work;
     std::vector<Transform> scratch_transforms; // reused by the interpenetration test
     LocalScratch local;
+    RestingContacts resting_contacts; // solver.resting: this interval's contact forces
 };
 
 // The pair of bodies i and k in the engine's order: a is the dynamic one when
