@@ -1,14 +1,323 @@
 #include "continuous_collision.h"
 
+#include "integrator.h"
+#include "manifold.h"
+
+#include <limits>
+
 namespace impulse {
 
+namespace {
+
+constexpr double never = std::numeric_limits<double>::infinity();
+
+// ---------------------------------------------------------------- the samples
+
+// The acceleration advance_all() integrates body i with: gravity, or with
+// solver.resting gravity plus this interval's contact forces.
+Acceleration acceleration_of(const World& world, std::size_t i) {
+    if (world.resting_contacts.any) {
+        return world.resting_contacts.accelerations[i];
+    }
+    return {world.gravity, 0.0};
+}
+
+double separation_of(World& world, const Pair& pair, const BodyState& a, const BodyState& b) {
+    ++world.work.narrow_phase_queries;
+    return separation(world.bodies[static_cast<std::size_t>(pair.a)].shape, transform_of(a),
+                      world.bodies[static_cast<std::size_t>(pair.b)].shape, transform_of(b));
+}
+
+// ---------------------------------------------------------------- the bounds
+
+// The step samples a body where advance(start, u) puts it, so what bounds the
+// motion between samples is the derivative in u of that function, taken from
+// engine/integrator.cpp. Under a constant acceleration a (gravity, plus
+// resting contact forces) and angular acceleration alpha (0 without resting
+// contact, when omega is constant), each integrator moves the centre of mass
+// to x0 + u v0 + (c / 2) u^2 a, at the rate v0 + c u a, and turns the body
+// likewise, at the rate omega0 + c u alpha:
+//   euler:            x0 + u v0                    c = 0 (the position ignores a)
+//   symplectic-euler: x0 + u (v0 + u a)            c = 2
+//   verlet:           x0 + u v0 + (u^2 / 2) a      c = 1
+//   rk4:              x0 + (u / 6) (6 v0 + 3 u a)  c = 1
+// With a = 0 every integrator takes the uniform-motion branch, x0 + u v0.
+double rate_factor(Integrator integrator) {
+    switch (integrator) {
+    case Integrator::euler:
+        return 0.0;
+    case Integrator::symplectic_euler:
+        return 2.0;
+    case Integrator::verlet:
+    case Integrator::rk4:
+        return 1.0;
+    }
+    return 2.0; // the largest: conservative
+}
+
+// How far a point of the body's surface moves per radian it turns: its
+// largest distance from the centre of mass. A circle's surface is the same set
+// at every angle, so turning moves none of it.
+double turning_radius(const Body& body) {
+    if (!body.rotates() || body.shape.type == ShapeType::circle) {
+        return 0.0;
+    }
+    double largest = 0.0;
+    const Polygon& polygon = body.shape.polygon;
+    for (int i = 0; i < polygon.count; ++i) {
+        const double r2 = length_squared(polygon.vertices[i]);
+        largest = r2 > largest ? r2 : largest;
+    }
+    return std::sqrt(largest);
+}
+
+// One pair's motion from the start of the sweep, in the terms of the rates
+// above: u seconds in, a's centre moves relative to b's at
+// w(u) = w0 + c u a_rel (under gravity alone a_rel = 0 for two dynamic bodies,
+// which fall together, and g against a static one), and each body turns at
+// omega0 + c u alpha, moving its surface by up to R per radian.
+struct PairMotion {
+    Vec2 w0;
+    Vec2 a_rel;
+    double c = 0.0;
+    double radius_a = 0.0;
+    double radius_b = 0.0;
+    double omega_a = 0.0;
+    double omega_b = 0.0;
+    double alpha_a = 0.0;
+    double alpha_b = 0.0;
+};
+
+PairMotion motion_of(const World& world, const Configuration& start, const Pair& pair) {
+    const std::size_t ia = static_cast<std::size_t>(pair.a);
+    const std::size_t ib = static_cast<std::size_t>(pair.b);
+    const Body& a = world.bodies[ia];
+    const Body& b = world.bodies[ib];
+    PairMotion m;
+    m.c = rate_factor(world.solver.integrator);
+    const Acceleration acc_a = acceleration_of(world, ia);
+    m.radius_a = turning_radius(a);
+    m.omega_a = start[ia].angular_velocity;
+    m.alpha_a = acc_a.angular;
+    // a is dynamic (world.h, Pair); a static b is never advanced.
+    if (b.is_static()) {
+        m.w0 = start[ia].velocity;
+        m.a_rel = acc_a.linear;
+        return m;
+    }
+    const Acceleration acc_b = acceleration_of(world, ib);
+    m.w0 = start[ia].velocity - start[ib].velocity;
+    m.a_rel = acc_a.linear - acc_b.linear;
+    m.radius_b = turning_radius(b);
+    m.omega_b = start[ib].angular_velocity;
+    m.alpha_b = acc_b.angular;
+    return m;
+}
+
+// The smallest d > 0 with a2 d^2 + b1 d >= m (m > 0), or never. Written to
+// avoid cancellation: the root 2 m / (b1 + sqrt(b1^2 + 4 a2 m)) when b1 > 0.
+double first_reach(double a2, double b1, double m) {
+    if (b1 > 0.0) {
+        const double discriminant = b1 * b1 + 4.0 * a2 * m;
+        return discriminant < 0.0 ? never : 2.0 * m / (b1 + std::sqrt(discriminant));
+    }
+    if (a2 > 0.0) {
+        return (std::sqrt(b1 * b1 + 4.0 * a2 * m) - b1) / (2.0 * a2);
+    }
+    return never;
+}
+
+// max over the shape's points p of d . p.
+double support(const Shape& shape, const Transform& xf, Vec2 d) {
+    if (shape.type == ShapeType::circle) {
+        return dot(d, xf.p) + shape.radius * length(d);
+    }
+    double best = -never;
+    for (int i = 0; i < shape.polygon.count; ++i) {
+        const double s = dot(d, apply(xf, shape.polygon.vertices[i]));
+        best = s > best ? s : best;
+    }
+    return best;
+}
+
+// A direction n (unit, toward a) and the pair's gap along it: the least n . p
+// over a minus the greatest n . q over b. For convex shapes the signed distance
+// is the largest such gap over all directions, so any n's gap bounds it from
+// below, and bounds separation() from below where that is negative (then it
+// is minus the depth, the signed distance).
+struct Axis {
+    Vec2 normal;
+    double gap = -never;
+};
+
+void consider(Axis& best, Vec2 n, const Shape& a, const Transform& xa, const Shape& b,
+              const Transform& xb) {
+    const double gap = -support(a, xa, -n) - support(b, xb, n);
+    if (gap > best.gap) {
+        best = {n, gap};
+    }
+}
+
+// The candidates among which separation() finds its value: every polygon
+// face normal and, for a circle against a polygon, the line from each vertex
+// to the centre (the vertex regions); for two circles, the line of centres.
+// So the best gap is separation() up to rounding.
+Axis separating_axis(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
+    Axis best;
+    if (a.type == ShapeType::polygon) {
+        for (int i = 0; i < a.polygon.count; ++i) {
+            consider(best, -rotate(xa.q, a.polygon.normals[i]), a, xa, b, xb);
+        }
+    }
+    if (b.type == ShapeType::polygon) {
+        for (int i = 0; i < b.polygon.count; ++i) {
+            consider(best, rotate(xb.q, b.polygon.normals[i]), a, xa, b, xb);
+        }
+    }
+    const auto towards = [](Vec2 from, Vec2 to) {
+        const Vec2 d = to - from;
+        const double norm = length(d);
+        return norm > 0.0 ? (1.0 / norm) * d : Vec2{0.0, 1.0};
+    };
+    if (a.type == ShapeType::circle && b.type == ShapeType::circle) {
+        consider(best, towards(xb.p, xa.p), a, xa, b, xb);
+    } else if (a.type == ShapeType::circle) {
+        for (int i = 0; i < b.polygon.count; ++i) {
+            consider(best, towards(apply(xb, b.polygon.vertices[i]), xa.p), a, xa, b, xb);
+        }
+    } else if (b.type == ShapeType::circle) {
+        for (int i = 0; i < a.polygon.count; ++i) {
+            consider(best, towards(xb.p, apply(xa, a.polygon.vertices[i])), a, xa, b, xb);
+        }
+    }
+    return best;
+}
+
+// How long after a free sample at u (separation s) the pair certainly stays
+// above the test's floor less contact_tolerance (conservative advancement).
+// Over the next d seconds a's centre moves relative to b's by exactly
+//   D(d) = w(u) d + (c / 2) a_rel d^2,
+// and each body's surface by at most R (|omega(u)| d + (c / 2) |alpha| d^2)
+// more by turning (a chord is shorter than its arc). Two bounds, the longer
+// wins, both sound:
+// - Any direction: the signed distance changes by at most the largest
+//   displacement of a point, |D(d)| plus the turning, and s bounds it from
+//   below while the pair is apart and equals it once they interpenetrate.
+// - Along the separating axis n at u: the gap along a fixed n falls by at most
+//   -(n . D(d)) plus the turning. This one lets a pair that slides along, or
+//   moves away from, what it touches go on in long steps instead of steps of
+//   contact_tolerance / speed.
+// A pair closing at constant speed is thus sampled again just as it is
+// contact_tolerance past the floor; one at rest on the ground under gravity,
+// when gravity has pulled it that far (the quadratic term, where the largest
+// speed over the rest of the step would make it crawl).
+double safe_advance(const World& world, const Pair& pair, const PairMotion& m, double u, double s,
+                    double floor, const BodyState& at_a, const BodyState& at_b, double end) {
+    const double tolerance = world.solver.contact_tolerance;
+    // The pair may close by what is left above the floor (none if already
+    // below it: only possible at u = 0) and contact_tolerance more.
+    const double margin = (s > floor ? s - floor : 0.0) + tolerance;
+    const Vec2 w = m.w0 + (m.c * u) * m.a_rel;
+    const double half_c = 0.5 * m.c;
+    const double turn_rate = m.radius_a * std::fabs(m.omega_a + m.c * u * m.alpha_a) +
+                             m.radius_b * std::fabs(m.omega_b + m.c * u * m.alpha_b);
+    const double turn_growth =
+        half_c * (m.radius_a * std::fabs(m.alpha_a) + m.radius_b * std::fabs(m.alpha_b));
+    const double any_direction =
+        first_reach(half_c * length(m.a_rel) + turn_growth, length(w) + turn_rate, margin);
+    if (u + any_direction >= end) {
+        return any_direction;
+    }
+    const Axis axis =
+        separating_axis(world.bodies[static_cast<std::size_t>(pair.a)].shape, transform_of(at_a),
+                        world.bodies[static_cast<std::size_t>(pair.b)].shape, transform_of(at_b));
+    const double axis_margin = axis.gap - floor + tolerance;
+    if (!(axis_margin > 0.0)) {
+        return any_direction;
+    }
+    const double along_axis = first_reach(-half_c * dot(axis.normal, m.a_rel) + turn_growth,
+                                          turn_rate - dot(axis.normal, w), axis_margin);
+    return along_axis > any_direction ? along_axis : any_direction;
+}
+
+// ---------------------------------------------------------------- the sweep
+
+struct PairSweep {
+    enum class Outcome { free, found, stalled } outcome = Outcome::free;
+    double time = 0.0; // found: the sample that interpenetrates; stalled: the last free one
+};
+
+// Samples pair p from `start` until it interpenetrates, or up to `end`. With
+// `strict`, another pair was found at `end` already, so a sample there could
+// not be earlier and is not taken; otherwise the last sample is at exactly
+// end = h, where the seed's end-of-step test looks.
+PairSweep sweep_pair(World& world, const Configuration& start, std::size_t p, double end,
+                     bool strict) {
+    const Pair& pair = world.pairs[p];
+    const std::size_t ia = static_cast<std::size_t>(pair.a);
+    const std::size_t ib = static_cast<std::size_t>(pair.b);
+    const PairMotion motion = motion_of(world, start, pair);
+    const double floor = interpenetration_floor(world, p);
+    BodyState at_a = start[ia];
+    BodyState at_b = start[ib];
+    double u = 0.0;
+    double s = separation_of(world, pair, at_a, at_b);
+    int samples = 1;
+    for (;;) {
+        double next = u + safe_advance(world, pair, motion, u, s, floor, at_a, at_b, end);
+        const bool last = !(next < end);
+        if (last) {
+            if (strict) {
+                return {};
+            }
+            next = end;
+        }
+        if (samples >= world.solver.max_halvings) {
+            return {PairSweep::Outcome::stalled, u};
+        }
+        at_a = advance_body(world, ia, start[ia], next);
+        at_b = advance_body(world, ib, start[ib], next);
+        s = separation_of(world, pair, at_a, at_b);
+        ++samples;
+        if (s < floor) {
+            return {PairSweep::Outcome::found, next};
+        }
+        if (last) {
+            return {};
+        }
+        u = next;
+    }
+}
+
+} // namespace
+
 SweptContact first_swept_contact(World& world, const Configuration& start, double h) {
-    // Placeholder until the conservative advancement lands: the seed's end-of-step test.
-    Configuration at_h;
-    advance_all(world, start, h, at_h);
     SweptContact swept;
-    swept.pair = first_interpenetrating_pair(world, at_h);
-    swept.time = h;
+    int stalled = -1;
+    double stalled_at = 0.0;
+    for (std::size_t p = 0; p < world.pairs.size(); ++p) {
+        // Once a pair is found, later pairs need only be swept to before its
+        // time: at the same time the lower index wins.
+        const bool strict = swept.pair >= 0;
+        const PairSweep r = sweep_pair(world, start, p, strict ? swept.time : h, strict);
+        if (r.outcome == PairSweep::Outcome::found) {
+            swept.pair = static_cast<int>(p);
+            swept.time = r.time;
+        } else if (r.outcome == PairSweep::Outcome::stalled &&
+                   (stalled < 0 || r.time < stalled_at)) {
+            stalled = static_cast<int>(p);
+            stalled_at = r.time;
+        }
+    }
+    // A pair that stalled only after the earliest contact does not matter: the
+    // step resolves that contact and sweeps again from there.
+    if (stalled >= 0 && (swept.pair < 0 || stalled_at < swept.time)) {
+        swept.converged = false;
+        swept.stalled_pair = stalled;
+    }
+    if (swept.pair < 0) {
+        swept.time = h;
+    }
     return swept;
 }
 

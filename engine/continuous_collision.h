@@ -1,10 +1,11 @@
 // Tunnelling caught (solver.ccd; docs/engine.md, "Tunnelling"). The seed tests
 // for interpenetration only at the end of a step, so a body that crosses a
 // thin one within a step is never seen. With ccd every pair's motion over the
-// step is swept by conservative advancement: from a free instant, step forward
-// by as long as the pair's distance, padded by the contact tolerance, cannot
-// be closed at the fastest the pair can approach; each sample is where the
-// seed's test is made.
+// step is swept by conservative advancement: from a free sample, step forward
+// by as long as the pair's gap, padded by the contact tolerance, cannot be
+// closed (at the fastest its points can move, or along the axis that
+// separates it, whichever allows longer); each sample is where the seed's test
+// is made.
 #pragma once
 
 #include "configuration.h"
@@ -18,9 +19,17 @@ struct SweptContact {
     int stalled_pair = -1; // then, which one
 };
 
-// The earliest sample over [0, h] after `start` at which some pair
-// interpenetrates. Between samples no pair can interpenetrate by more than
-// solver.contact_tolerance, so nothing passes through anything unseen.
+// The earliest sample over (0, h] after `start` at which some pair
+// interpenetrates (the seed's test, as first_interpenetrating_pair() makes it,
+// of the poses advance_all() gives: the trial the time-of-impact search
+// integrates there is the sample to the bit), ties going to the lower pair
+// index; time = h and pair = -1 when none does. Between a pair's samples it
+// cannot interpenetrate by more than solver.contact_tolerance past that test,
+// so nothing passes through anything unseen. Each sample is one narrow-phase
+// query and one body advance per dynamic body of its pair. Not converged when
+// a pair needed more than solver.max_halvings samples before the earliest
+// contact found (a pair that stalls only later does not matter: the step
+// resolves that contact first and sweeps again from there).
 SweptContact first_swept_contact(World& world, const Configuration& start, double h);
 
 } // namespace impulse
