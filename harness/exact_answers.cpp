@@ -115,6 +115,26 @@ bool lands_on_corner_below_centre(const SceneBody& body) {
            std::abs(by_height[0].x - body.position.x) <= 1e-12 * size;
 }
 
+// Exactly two lowest corners, level, their midpoint straight below the centre:
+// with simultaneous contacts both take equal impulses and the body bounces
+// flat, as a point mass would.
+bool lands_flat_below_centre(const SceneBody& body) {
+    const std::vector<Vec2> corners = world_vertices(body);
+    if (corners.size() < 3) {
+        return false;
+    }
+    std::vector<Vec2> by_height = corners;
+    std::sort(by_height.begin(), by_height.end(), [](Vec2 a, Vec2 b) { return a.y < b.y; });
+    double size = 0.0;
+    for (const Vec2 c : corners) {
+        size = std::max(size, length(c - body.position));
+    }
+    const double middle = 0.5 * (by_height[0].x + by_height[1].x);
+    return by_height[1].y - by_height[0].y < level_corners &&
+           by_height[2].y - by_height[1].y >= level_corners &&
+           std::abs(middle - body.position.x) <= 1e-12 * size;
+}
+
 bool has_face_along(const SceneBody& body, Vec2 u) {
     if (body.shape.type != ShapeType::polygon) {
         return false;
@@ -149,12 +169,15 @@ std::optional<Refusal> drop_refusal(const Scene& scene, const SceneBody& body,
     // A free polygon lands on one corner first (the seed's single contact) and
     // starts to spin, unless that corner is straight below its centre; a disc
     // (impulse through its centre) and a non-rotating body bounce straight.
+    const bool flat = scene.solver.contacts == ContactMode::simultaneous &&
+                      lands_flat_below_centre(body);
     if (body.shape.type == ShapeType::polygon && body.rotation &&
-        !lands_on_corner_below_centre(body)) {
+        !lands_on_corner_below_centre(body) && !flat) {
         return refuse(Refusal::Where::body,
                       formula + " has no rotation, but " + name +
-                          " is a polygon free to rotate that does not land on one corner below "
-                          "its centre; give it \"rotation\": false");
+                          " is a polygon free to rotate that lands neither on one corner below "
+                          "its centre nor (with \"contacts\": \"simultaneous\") flat and "
+                          "centred; give it \"rotation\": false");
     }
     return gap_refusal(scene, body, formula);
 }

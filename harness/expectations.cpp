@@ -212,7 +212,14 @@ void check_drop(const Scene& scene, const Trajectory& trajectory, Checks& checks
         return;
     }
     const DropLadder drop{*h0, gravity_magnitude(scene), scene.restitution};
-    const std::vector<std::size_t> impacts = events_of(trajectory, x.body);
+    // A flat landing under simultaneous contacts records one event per
+    // corner at the same instant: one impact.
+    std::vector<std::size_t> impacts;
+    for (const std::size_t i : events_of(trajectory, x.body)) {
+        if (impacts.empty() || trajectory.events[i].t != trajectory.events[impacts.back()].t) {
+            impacts.push_back(i);
+        }
+    }
     const int seen = static_cast<int>(std::min<std::size_t>(impacts.size(), 1u << 30));
     for (int n = 1; n <= std::min(x.impacts, seen); ++n) {
         const TrajectoryEvent& ev = trajectory.events[impacts[static_cast<std::size_t>(n - 1)]];
