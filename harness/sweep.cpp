@@ -85,6 +85,7 @@ Scene scene_for(const Scene& scene, const SweepPoint& point) {
         overrides.integrator = point.integrator;
         overrides.toi_tolerance = point.toi_tolerance;
         s.solver.toi = point.toi;
+        s.solver.ccd = point.ccd;
     } else {
         s.box2d.substeps = point.substeps;
         s.box2d.velocity_iterations = point.velocity_iterations;
@@ -162,7 +163,7 @@ std::string sweep_family(const SweepPoint& point) {
         return "box2d";
     }
     return std::string("impulse ") + integrator_name(point.integrator) + "/" +
-           toi_method_name(point.toi);
+           toi_method_name(point.toi) + (point.ccd ? "+ccd" : "");
 }
 
 SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
@@ -178,18 +179,34 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
     result.repeats = config.repeats;
     result.simulated_duration = static_cast<double>(step_count(scene)) * scene.dt;
 
-    // The grid.
+    // ccd sweeps every pair's whole motion at once; local stepping looks at
+    // one pair at a time (the scene loader refuses the two together).
+    const std::vector<bool> ccds =
+        config.ccd.empty() ? std::vector<bool>{scene.solver.ccd} : config.ccd;
+    const bool any_ccd = std::find(ccds.begin(), ccds.end(), true) != ccds.end();
+    if (any_ccd && scene.solver.stepping == Stepping::local) {
+        throw InputError(scene.file, "solver.stepping",
+                         "ccd on is not available with \"stepping\": \"local\" in this version "
+                         "(local stepping looks at one pair at a time); sweep with --ccd off, "
+                         "or use \"stepping\": \"world\"");
+    }
+
+    // The grid. ccd varies fastest, so a point with it sits next to the same
+    // point without.
     for (const double dt : config.dts) {
         for (const Integrator integrator : config.integrators) {
             for (const TimeOfImpactMethod toi : config.toi_methods) {
                 for (const double tolerance : config.toi_tolerances) {
-                    SweepPoint p;
-                    p.dt = dt;
-                    p.integrator = integrator;
-                    p.toi = toi;
-                    p.toi_tolerance = tolerance;
-                    p.family = sweep_family(p);
-                    result.points.push_back(p);
+                    for (const bool ccd : ccds) {
+                        SweepPoint p;
+                        p.dt = dt;
+                        p.integrator = integrator;
+                        p.toi = toi;
+                        p.toi_tolerance = tolerance;
+                        p.ccd = ccd;
+                        p.family = sweep_family(p);
+                        result.points.push_back(p);
+                    }
                 }
             }
         }
@@ -242,6 +259,7 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
         const double finest = *std::min_element(config.dts.begin(), config.dts.end()) / 4.0;
         Scene s = scene;
         s.solver.toi = TimeOfImpactMethod::secant;
+        s.solver.ccd = any_ccd; // a reference that tunnels is no reference
         Overrides o;
         o.dt = finest;
         o.integrator = Integrator::rk4;
@@ -251,9 +269,10 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
         reference = record(*simulator, s); // a refusal here is the sweep's error
         result.error_reference = "against a reference run at the finest settings (impulse rk4, "
                                  "dt " +
-                                 format_double(finest) +
-                                 " s, secant, toi_tolerance 1e-14): largest relative "
-                                 "difference of the final frame's positions and velocities";
+                                 format_double(finest) + " s, secant, toi_tolerance 1e-14, ccd " +
+                                 (any_ccd ? "on" : "off") +
+                                 "): largest relative difference of the final frame's positions "
+                                 "and velocities";
     }
 
     const std::size_t total = result.points.size();

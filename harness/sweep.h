@@ -1,6 +1,6 @@
 // `impulse sweep`: the speed/accuracy trade. A grid of solver settings run on
-// one scene (impulse over time step, integrator, time-of-impact method and
-// tolerance; Box2D over time step, sub-steps and iterations), each point's
+// one scene (impulse over time step, integrator, time-of-impact method,
+// tolerance and, on request, ccd; Box2D over time step, sub-steps and iterations), each point's
 // error and cost measured, and the Pareto front of every method family.
 // Measurement only: the command line prints (harness/cli/sweep.cpp).
 #pragma once
@@ -21,6 +21,9 @@ struct SweepConfig {
     std::vector<Integrator> integrators;
     std::vector<TimeOfImpactMethod> toi_methods;
     std::vector<double> toi_tolerances;
+    // solver.ccd for the impulse points (docs/engine.md, "Tunnelling"); empty:
+    // the scene's own setting only.
+    std::vector<bool> ccd;
     bool box2d = true; // ignored (no Box2D points) when the tool is built without Box2D
     std::vector<int> box2d_substeps;
     std::vector<std::pair<int, int>> box2d_iterations; // (velocity, position)
@@ -29,19 +32,20 @@ struct SweepConfig {
 
 // The defaults: dt in {1/30, ..., 1/960} (those not longer than the scene's
 // duration), all four integrators, both time-of-impact methods, toi_tolerance
-// {1e-6, 1e-9, 1e-12}; Box2D over the same dts x substeps {1, 4} x
+// {1e-6, 1e-9, 1e-12}, ccd as the scene sets it; Box2D over the same dts x substeps {1, 4} x
 // iterations {8/3, 30/10}; 5 repeats.
 SweepConfig default_sweep_config(const Scene& scene);
 
 // One grid point and what it measured.
 struct SweepPoint {
     bool box2d = false;
-    std::string family; // "impulse verlet/secant", "box2d"
+    std::string family; // "impulse verlet/secant", "impulse verlet/secant+ccd", "box2d"
     double dt = 0.0;
     // impulse points
     Integrator integrator = Integrator::euler;
     TimeOfImpactMethod toi = TimeOfImpactMethod::bisection;
     double toi_tolerance = 0.0;
+    bool ccd = false; // solver.ccd
     // Box2D points
     int substeps = 0;
     int velocity_iterations = 0;
@@ -76,9 +80,11 @@ using SweepProgress = std::function<void(std::size_t, std::size_t, const SweepPo
 inline constexpr double sweep_error_floor = 1e-9;
 
 // Runs the grid. Throws InputError when the configuration cannot apply to the
-// scene (an empty grid, a dt longer than the duration) or when a reference run
-// is needed and the engine refuses it; a grid point the engine refuses is a
-// failed point, never an exception.
+// scene (an empty grid, a dt longer than the duration, ccd with local
+// stepping) or when a reference run is needed and the engine refuses it; a
+// grid point the engine refuses is a failed point, never an exception. The
+// reference run uses ccd when the scene or any grid point does: a reference
+// that tunnels is no reference.
 SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
                       const SweepProgress& progress = {});
 
@@ -90,7 +96,7 @@ std::vector<std::size_t> pareto_front(const std::vector<std::pair<double, double
 // Sets on_front for every successful point, per family.
 void mark_fronts(std::vector<SweepPoint>& points);
 
-// "impulse verlet/secant" or "box2d".
+// "impulse verlet/secant", "impulse verlet/secant+ccd" (ccd on) or "box2d".
 std::string sweep_family(const SweepPoint& point);
 
 // The two targets against Box2D:

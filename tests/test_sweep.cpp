@@ -1,6 +1,7 @@
 // `impulse sweep`: the grid, its error and work measurements, the Pareto
 // fronts and the verb's outputs. No test limits wall-clock time.
 #include "cli.h"
+#include "input_error.h"
 #include "scene.h"
 #include "sweep.h"
 
@@ -9,6 +10,7 @@
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 #include <unistd.h>
@@ -596,4 +598,209 @@ TEST_CASE("impulse sweep prints the targets after the table and under \"targets\
         CHECK(t.at("pareto_front").at("box2d_front_points") == 1);
     }
 #endif
+}
+
+namespace {
+
+std::string bullet_path() {
+    return std::string(IMPULSE_SOURCE_DIR) + "/harness/scenes/bullet.json";
+}
+
+// One impulse setting (verlet/secant at the scene's tolerance), no Box2D.
+SweepConfig one_setting(const Scene& scene, double dt) {
+    SweepConfig config = default_sweep_config(scene);
+    config.dts = {dt};
+    config.integrators = {Integrator::verlet};
+    config.toi_methods = {TimeOfImpactMethod::secant};
+    config.toi_tolerances = {1e-12};
+    config.box2d = false;
+    config.repeats = 1;
+    return config;
+}
+
+} // namespace
+
+TEST_CASE("--ccd adds a grid dimension: both settings, each its own family", "[sweep]") {
+    SweepPoint p;
+    p.integrator = Integrator::verlet;
+    p.toi = TimeOfImpactMethod::secant;
+    CHECK(sweep_family(p) == "impulse verlet/secant");
+    p.ccd = true;
+    CHECK(sweep_family(p) == "impulse verlet/secant+ccd");
+
+    const Scene drop = load_scene(drop_box_path());
+    SECTION("default: the scene's own setting only") {
+        CHECK(default_sweep_config(drop).ccd.empty());
+        const SweepResult off = run_sweep(drop, one_setting(drop, 1.0 / 60.0));
+        REQUIRE(off.points.size() == 1);
+        CHECK_FALSE(off.points[0].ccd);
+        CHECK(off.points[0].family == "impulse verlet/secant");
+
+        const Scene bullet = load_scene(bullet_path()); // "ccd": true
+        REQUIRE(bullet.solver.ccd);
+        const SweepResult on = run_sweep(bullet, one_setting(bullet, 1.0 / 30.0));
+        REQUIRE(on.points.size() == 1);
+        CHECK(on.points[0].ccd);
+        CHECK(on.points[0].family == "impulse verlet/secant+ccd");
+        // A scene without exact answers: the reference run catches the hit too.
+        CHECK_FALSE(on.against_exact);
+        CHECK(on.error_reference.find("ccd on") != std::string::npos);
+    }
+    SECTION("off,on: every impulse setting twice, ccd varying fastest") {
+        SweepConfig config = one_setting(drop, 1.0 / 60.0);
+        config.dts = {1.0 / 60.0, 1.0 / 120.0};
+        config.toi_methods = {TimeOfImpactMethod::bisection, TimeOfImpactMethod::secant};
+        config.ccd = {false, true};
+        const SweepResult r = run_sweep(drop, config);
+        REQUIRE(r.points.size() == 2 * 2 * 2);
+        std::set<std::string> families;
+        for (std::size_t i = 0; i < r.points.size(); ++i) {
+            const SweepPoint& q = r.points[i];
+            INFO(i << ": " << q.family << " " << q.failure);
+            CHECK(q.ccd == (i % 2 == 1));
+            CHECK(q.family == sweep_family(q));
+            CHECK((q.family.find("+ccd") != std::string::npos) == q.ccd);
+            families.insert(q.family);
+            REQUIRE(q.ok);
+            if (i % 2 == 1) {
+                // The same setting without ccd: drop-box has nothing to
+                // tunnel through, so the answer is the same to the tolerance.
+                const SweepPoint& without = r.points[i - 1];
+                CHECK_FALSE(without.ccd);
+                CHECK(without.dt == q.dt);
+                CHECK(without.toi == q.toi);
+                CHECK(q.error == Approx(without.error).margin(1e-9));
+                CHECK(q.work.narrow_phase_queries > without.work.narrow_phase_queries);
+            }
+        }
+        CHECK(families ==
+              std::set<std::string>{"impulse verlet/bisection", "impulse verlet/bisection+ccd",
+                                    "impulse verlet/secant", "impulse verlet/secant+ccd"});
+        // Exact answers: no reference run, nothing about ccd to say.
+        CHECK(r.against_exact);
+    }
+    SECTION("the reference run uses ccd when a grid point does, and says so") {
+        Scene no_exact = drop;
+        no_exact.expectations.clear();
+        SweepConfig config = one_setting(no_exact, 1.0 / 60.0);
+        config.ccd = {false};
+        const SweepResult off = run_sweep(no_exact, config);
+        CHECK(off.error_reference.find("ccd off") != std::string::npos);
+        config.ccd = {false, true};
+        const SweepResult on = run_sweep(no_exact, config);
+        CHECK(on.error_reference.find("ccd on") != std::string::npos);
+    }
+    SECTION("ccd on with local stepping is an input error; off is fine") {
+        Scene local = drop;
+        local.solver.stepping = Stepping::local;
+        SweepConfig config = one_setting(local, 1.0 / 60.0);
+        config.ccd = {false, true};
+        try {
+            (void)run_sweep(local, config);
+            FAIL("ccd on with local stepping was accepted");
+        } catch (const InputError& e) {
+            const std::string what = e.what();
+            INFO(what);
+            CHECK(what.find("ccd on") != std::string::npos);
+            CHECK(what.find("\"stepping\": \"local\"") != std::string::npos);
+        }
+        config.ccd = {false};
+        CHECK_NOTHROW(run_sweep(local, config));
+    }
+}
+
+TEST_CASE("impulse sweep --ccd: JSON and CSV carry the setting; bad values are usage errors",
+          "[sweep]") {
+    const std::vector<std::string> grid = {drop_box_path(),
+                                           "--dt",
+                                           "0.016666666666666666",
+                                           "--integrator",
+                                           "verlet",
+                                           "--toi",
+                                           "secant",
+                                           "--toi-tolerance",
+                                           "1e-12",
+                                           "--ccd",
+                                           "off,on",
+                                           "--repeats",
+                                           "1",
+                                           "--no-box2d"};
+    {
+        std::ostringstream out, err;
+        std::vector<std::string> args = grid;
+        args.emplace_back("--json");
+        REQUIRE(cli::sweep_verb(args, out, err) == 0);
+        const nlohmann::json points = nlohmann::json::parse(out.str()).at("points");
+        REQUIRE(points.size() == 2);
+        CHECK(points[0].at("ccd") == false);
+        CHECK(points[0].at("family") == "impulse verlet/secant");
+        CHECK(points[1].at("ccd") == true);
+        CHECK(points[1].at("family") == "impulse verlet/secant+ccd");
+    }
+    {
+        std::ostringstream out, err;
+        std::vector<std::string> args = grid;
+        args.emplace_back("--csv");
+        REQUIRE(cli::sweep_verb(args, out, err) == 0);
+        std::istringstream lines(out.str());
+        std::string header, off, on;
+        std::getline(lines, header);
+        std::getline(lines, off);
+        std::getline(lines, on);
+        CHECK(header.rfind("engine,family,dt,integrator,toi,toi_tolerance,ccd,substeps,", 0) == 0);
+        CHECK(off.find(",verlet,secant,1e-12,false,") != std::string::npos);
+        CHECK(on.rfind("impulse,impulse verlet/secant+ccd,", 0) == 0);
+        CHECK(on.find(",verlet,secant,1e-12,true,") != std::string::npos);
+    }
+    {
+        std::ostringstream out, err;
+        REQUIRE(cli::sweep_verb(grid, out, err) == 0);
+        CHECK(out.str().find("\nimpulse verlet/secant+ccd ") != std::string::npos);
+    }
+    std::ostringstream out, err;
+    CHECK_THROWS_AS(cli::sweep_verb({drop_box_path(), "--ccd", "yes"}, out, err), cli::UsageError);
+    CHECK_THROWS_AS(cli::sweep_verb({drop_box_path(), "--ccd", "off,"}, out, err), cli::UsageError);
+}
+
+TEST_CASE("The cost of ccd on bullet: without it the disc tunnels, with it the error is tiny",
+          "[sweep]") {
+    // impulse sweep bullet --dt 1/30 --integrator verlet --toi secant --ccd off,on
+    //   --repeats 1 --no-box2d
+    const Scene scene = load_scene(bullet_path());
+    SweepConfig config = default_sweep_config(scene);
+    config.dts = {1.0 / 30.0};
+    config.integrators = {Integrator::verlet};
+    config.toi_methods = {TimeOfImpactMethod::secant};
+    config.ccd = {false, true};
+    config.box2d = false;
+    config.repeats = 1;
+    const SweepResult r = run_sweep(scene, config);
+    // bullet declares no drop, corner-impact or head-on answer: a reference
+    // run, which must not tunnel.
+    CHECK_FALSE(r.against_exact);
+    CHECK(r.error_reference.find("ccd on") != std::string::npos);
+    REQUIRE(r.points.size() == config.toi_tolerances.size() * 2);
+    for (std::size_t i = 0; i + 1 < r.points.size(); i += 2) {
+        const SweepPoint& off = r.points[i];
+        const SweepPoint& on = r.points[i + 1];
+        INFO("toi_tolerance " << off.toi_tolerance << ": off " << off.failure << ", on "
+                              << on.failure);
+        REQUIRE(off.ok);
+        REQUIRE(on.ok);
+        CHECK_FALSE(off.ccd);
+        CHECK(on.ccd);
+        CHECK(on.toi_tolerance == off.toi_tolerance);
+        // Off: the disc passes the wall and flies on at +1000 m/s where the
+        // reference comes back at -1000 m/s, 90 m the other side: error ~ 2.
+        CHECK(off.error > 1.0);
+        CHECK(off.work.collisions == 0);
+        // On: the hit is found and the bounce is the reference's.
+        CHECK(on.error < 1e-6);
+        CHECK(on.work.collisions == 1);
+        // What it costs: ccd's samples are narrow-phase queries.
+        CHECK(on.work.steps == off.work.steps);
+        CHECK(on.work.narrow_phase_queries > off.work.narrow_phase_queries);
+        CHECK(on.family == "impulse verlet/secant+ccd");
+        CHECK(off.family == "impulse verlet/secant");
+    }
 }

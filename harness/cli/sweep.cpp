@@ -29,22 +29,25 @@ constexpr const char* sweep_help =
     R"(usage: impulse sweep SCENE [options]
 
 The speed/accuracy trade on one scene: runs a grid of impulse settings (time
-step x integrator x time-of-impact method x toi_tolerance) and of Box2D
+step x integrator x time-of-impact method x toi_tolerance x ccd) and of Box2D
 settings (time step x sub-steps x iterations) and measures each point's
 
   error  against the exact answers the scene declares (drop, corner-impact,
          head-on: the largest |actual - expected| / max(|expected|, 1e-9));
          where it declares none, against a reference run at the finest
-         settings (impulse rk4, the finest dt / 4, secant, toi_tolerance 1e-14):
-         the largest relative difference of the final frame's state
+         settings (impulse rk4, the finest dt / 4, secant, toi_tolerance 1e-14,
+         ccd on when the scene or any grid point uses it): the largest
+         relative difference of the final frame's state
   cost   wall time (steady clock) per simulated second, median of the repeats
          and its spread (max - min), plus deterministic work counters: steps,
-         narrow-phase queries, time-of-impact iterations
+         narrow-phase queries (with ccd, its sampling too), time-of-impact
+         iterations
 
 and marks each method family's Pareto front (impulse per integrator/toi
-method, and Box2D). A grid point the engine refuses (a Zeno cascade, a resting
-contact) is reported as failed with its reason. SCENE is a path or the name of
-a canonical scene under ROOT/harness/scenes/.
+method, "+ccd" a family of its own, and Box2D). A grid point the engine
+refuses (a Zeno cascade, a resting contact) is reported as failed with its
+reason. SCENE is a path or the name of a canonical scene under
+ROOT/harness/scenes/.
 
 After the table (and under "targets" in --json), the two targets against
 Box2D, judged on this run's wall-clock costs: at the cost of Box2D at dt 1/60,
@@ -57,6 +60,8 @@ together) dominating every point of Box2D's.
   --integrator LIST         euler,symplectic-euler,verlet,rk4 (default all)
   --toi LIST                bisection,secant (default both)
   --toi-tolerance LIST      seconds (default 1e-6,1e-9,1e-12)
+  --ccd LIST                off,on: solver.ccd, catching tunnelling (default: the
+                            scene's own setting); not with "stepping": "local"
   --box2d-substeps LIST     Box2D steps per scene step (default 1,4)
   --box2d-iterations LIST   velocity/position iterations (default 8/3,30/10)
   --no-box2d                impulse points only
@@ -127,6 +132,15 @@ SweepConfig config_from(const Arguments& a, const Scene& scene) {
         config.toi_tolerances.clear();
         for (const std::string& item : split(*list)) {
             config.toi_tolerances.push_back(positive_seconds("--toi-tolerance", item));
+        }
+    }
+    if (const auto list = a.option("--ccd")) {
+        config.ccd.clear();
+        for (const std::string& item : split(*list)) {
+            if (item != "off" && item != "on") {
+                throw UsageError("--ccd takes off or on, got '" + item + "'");
+            }
+            config.ccd.push_back(item == "on");
         }
     }
     if (const auto list = a.option("--box2d-substeps")) {
@@ -200,11 +214,12 @@ std::string dt_text(double dt) {
     return format_double(dt);
 }
 
-// "Box2D 1/60 sub 1, it 8/3", "verlet/secant 1/30 tol 1e-12".
+// "Box2D 1/60 sub 1, it 8/3", "verlet/secant 1/30 tol 1e-12",
+// "verlet/secant+ccd 1/30 tol 1e-12".
 std::string point_name(const SweepPoint& p) {
-    const std::string method =
-        p.box2d ? std::string("Box2D")
-                : std::string(integrator_name(p.integrator)) + "/" + toi_method_name(p.toi);
+    const std::string method = p.box2d ? std::string("Box2D")
+                                       : std::string(integrator_name(p.integrator)) + "/" +
+                                             toi_method_name(p.toi) + (p.ccd ? "+ccd" : "");
     return method + " " + dt_text(p.dt) + " " + settings_of(p);
 }
 
@@ -296,11 +311,16 @@ void write_table(const SweepResult& r, std::ostream& out) {
     out << "error " << r.error_reference << "\n";
     out << "cost: seconds of wall time per simulated second (median +- spread); * on its "
            "family's Pareto front\n\n";
-    out << pad("method", 36) << pad("dt", 7) << pad("settings", 17) << pad("error", 10, true)
-        << pad("cost", 11, true) << pad("+-", 10, true) << pad("steps", 9, true)
-        << pad("narrow", 10, true) << pad("toi_it", 9, true) << "\n";
+    // As wide as the longest family ("+ccd" can take one past the usual 36).
+    std::size_t method_width = 36;
     for (const SweepPoint& p : r.points) {
-        out << pad(p.family, 36) << pad(dt_text(p.dt), 7) << pad(settings_of(p), 17);
+        method_width = std::max(method_width, p.family.size() + 2);
+    }
+    out << pad("method", method_width) << pad("dt", 7) << pad("settings", 17)
+        << pad("error", 10, true) << pad("cost", 11, true) << pad("+-", 10, true)
+        << pad("steps", 9, true) << pad("narrow", 10, true) << pad("toi_it", 9, true) << "\n";
+    for (const SweepPoint& p : r.points) {
+        out << pad(p.family, method_width) << pad(dt_text(p.dt), 7) << pad(settings_of(p), 17);
         if (!p.ok) {
             out << "  FAILED: " << p.failure << "\n";
             continue;
@@ -375,6 +395,7 @@ nlohmann::json to_json(const SweepResult& r) {
             j["integrator"] = integrator_name(p.integrator);
             j["toi"] = toi_method_name(p.toi);
             j["toi_tolerance"] = p.toi_tolerance;
+            j["ccd"] = p.ccd;
         }
         j["ok"] = p.ok;
         if (!p.ok) {
@@ -417,18 +438,18 @@ std::string csv_number(double value) {
 }
 
 void write_csv(const SweepResult& r, std::ostream& out) {
-    out << "engine,family,dt,integrator,toi,toi_tolerance,substeps,velocity_iterations,"
+    out << "engine,family,dt,integrator,toi,toi_tolerance,ccd,substeps,velocity_iterations,"
            "position_iterations,ok,error,cost_median,cost_spread,steps,narrow_phase_queries,"
            "toi_iterations,collisions,on_front,failure\n";
     for (const SweepPoint& p : r.points) {
         out << (p.box2d ? "box2d" : "impulse") << "," << csv_field(p.family) << ","
             << format_double(p.dt) << ",";
         if (p.box2d) {
-            out << ",,," << p.substeps << "," << p.velocity_iterations << ","
+            out << ",,,," << p.substeps << "," << p.velocity_iterations << ","
                 << p.position_iterations << ",";
         } else {
             out << integrator_name(p.integrator) << "," << toi_method_name(p.toi) << ","
-                << format_double(p.toi_tolerance) << ",,,,";
+                << format_double(p.toi_tolerance) << "," << (p.ccd ? "true" : "false") << ",,,,";
         }
         out << (p.ok ? "true" : "false") << "," << (p.ok ? csv_number(p.error) : "") << ","
             << (p.ok ? csv_number(p.cost_median) : "") << ","
@@ -445,8 +466,15 @@ constexpr double plot_error_floor = 1e-17;
 } // namespace
 
 std::string sweep_svg(const SweepResult& r) {
-    constexpr double width = 880, height = 560, left = 80, right = 250, top = 50, bottom = 60;
-    const double plot_w = width - left - right, plot_h = height - top - bottom;
+    constexpr double height = 560, left = 80, top = 50, bottom = 60, plot_w = 550;
+    // The legend's column as wide as its longest label needs (about 7 px a
+    // character at 12 px): "impulse symplectic-euler/bisection+ccd" is long.
+    std::size_t longest = 0;
+    for (const SweepPoint& p : r.points) {
+        longest = std::max(longest, p.box2d ? std::string("Box2D 2.4.1").size() : p.family.size());
+    }
+    const double right = std::max(250.0, 50.0 + 7.0 * static_cast<double>(longest));
+    const double width = left + plot_w + right, plot_h = height - top - bottom;
     std::vector<const SweepPoint*> drawn;
     for (const SweepPoint& p : r.points) {
         if (p.ok && std::isfinite(p.error) && p.cost_median > 0.0) {
@@ -473,7 +501,8 @@ std::string sweep_svg(const SweepResult& r) {
     auto px = [&](double v) { return left + (v - x0) / (x1 - x0) * plot_w; };
     auto py = [&](double v) { return top + (y1 - v) / (y1 - y0) * plot_h; };
 
-    // Families in first-appearance order; Box2D drawn last and distinct.
+    // Families in first-appearance order; Box2D drawn last and distinct; a
+    // "+ccd" family in its sibling's colour, dotted.
     std::vector<std::string> families;
     for (const SweepPoint& p : r.points) {
         if (std::find(families.begin(), families.end(), p.family) == families.end()) {
@@ -482,11 +511,32 @@ std::string sweep_svg(const SweepResult& r) {
     }
     const char* palette[] = {"#1f77b4", "#aec7e8", "#ff7f0e", "#ffbb78", "#2ca02c",
                              "#98df8a", "#9467bd", "#c5b0d5", "#8c564b", "#e377c2"};
-    std::map<std::string, std::string> colour;
+    const std::string ccd_suffix = "+ccd";
+    auto is_ccd = [&](const std::string& f) {
+        return f.size() > ccd_suffix.size() &&
+               f.compare(f.size() - ccd_suffix.size(), ccd_suffix.size(), ccd_suffix) == 0;
+    };
+    auto base_of = [&](const std::string& f) {
+        return is_ccd(f) ? f.substr(0, f.size() - ccd_suffix.size()) : f;
+    };
+    std::map<std::string, std::string> base_colour;
     std::size_t next = 0;
     for (const std::string& f : families) {
-        colour[f] = f == "box2d" ? "#d62728" : palette[next++ % 10];
+        const std::string base = base_of(f);
+        if (base_colour.count(base) == 0) {
+            base_colour[base] = base == "box2d" ? "#d62728" : palette[next++ % 10];
+        }
     }
+    std::map<std::string, std::string> colour;
+    for (const std::string& f : families) {
+        colour[f] = base_colour[base_of(f)];
+    }
+    auto dashes = [&](const std::string& f) -> std::string {
+        if (f == "box2d") {
+            return " stroke-dasharray=\"8 4\"";
+        }
+        return is_ccd(f) ? " stroke-dasharray=\"2 3\"" : "";
+    };
 
     std::ostringstream s;
     s << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
@@ -547,8 +597,7 @@ std::string sweep_svg(const SweepResult& r) {
                   [&](const SweepPoint* a, const SweepPoint* b) { return lx(*a) < lx(*b); });
         const bool box2d = f == "box2d";
         s << "<polyline fill=\"none\" stroke=\"" << colour[f] << "\" stroke-width=\""
-          << (box2d ? "3" : "1.5") << "\"" << (box2d ? " stroke-dasharray=\"8 4\"" : "")
-          << " points=\"";
+          << (box2d ? "3" : "1.5") << "\"" << dashes(f) << " points=\"";
         for (std::size_t i = 0; i < front.size(); ++i) {
             s << (i ? " " : "") << fixed(px(lx(*front[i])), 2) << ","
               << fixed(py(ly(*front[i])), 2);
@@ -566,14 +615,15 @@ std::string sweep_svg(const SweepResult& r) {
         const bool box2d = f == "box2d";
         s << "<line x1=\"" << fixed(lx0, 1) << "\" y1=\"" << fixed(ly0, 1) << "\" x2=\""
           << fixed(lx0 + 24, 1) << "\" y2=\"" << fixed(ly0, 1) << "\" stroke=\"" << colour[f]
-          << "\" stroke-width=\"" << (box2d ? "3" : "1.5") << "\""
-          << (box2d ? " stroke-dasharray=\"8 4\"" : "") << "/>\n";
+          << "\" stroke-width=\"" << (box2d ? "3" : "1.5") << "\"" << dashes(f) << "/>\n";
         s << "<text x=\"" << fixed(lx0 + 30, 1) << "\" y=\"" << fixed(ly0 + 4, 1) << "\">"
           << xml_escape(box2d ? "Box2D 2.4.1" : f) << "</text>\n";
         ly0 += 18;
     }
     s << "<text x=\"" << fixed(lx0, 1) << "\" y=\"" << fixed(ly0 + 8, 1)
-      << "\" font-size=\"10\" fill=\"#555\">lines: Pareto fronts; dots: all points</text>\n";
+      << "\" font-size=\"10\" fill=\"#555\">lines: Pareto fronts"
+      << (std::any_of(families.begin(), families.end(), is_ccd) ? " (dotted: +ccd)" : "")
+      << "; dots: all points</text>\n";
     s << "</svg>\n";
     return s.str();
 }
@@ -582,7 +632,7 @@ int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
     const Arguments a =
         parse_arguments(args,
                         {"--dt", "--integrator", "--toi", "--toi-tolerance", "--box2d-substeps",
-                         "--box2d-iterations", "--repeats", "--svg", "--root"},
+                         "--box2d-iterations", "--ccd", "--repeats", "--svg", "--root"},
                         {"--help", "--json", "--csv", "--no-box2d", "--progress"});
     if (a.has_flag("--help")) {
         out << sweep_help;
