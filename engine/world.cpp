@@ -76,6 +76,9 @@ std::optional<StepError> step_world(World& world, double t0, double dt,
             if (!find_resting_contacts(world, a, b)) {
                 return StepError{StepFailure::contact_problem_unsolved, t0 + elapsed, a, b};
             }
+            // The inelastic impulse that stops the resting points changed the
+            // velocities: the interval starts from them.
+            start = configuration_of(world);
         }
         // 1. Integrate every body forward by the rest of the step.
         double h = dt - elapsed;

@@ -620,7 +620,7 @@ SweepConfig one_setting(const Scene& scene, double dt) {
 
 } // namespace
 
-TEST_CASE("--ccd adds a grid dimension: both settings, each its own family", "[sweep]") {
+TEST_CASE("The ccd option adds a grid dimension: both settings, each its own family", "[sweep]") {
     SweepPoint p;
     p.integrator = Integrator::verlet;
     p.toi = TimeOfImpactMethod::secant;
