@@ -4,6 +4,9 @@
 #include "simulator.h"
 #include "world.h"
 
+#include <cmath>
+#include <utility>
+
 namespace impulse::harness {
 
 namespace {
@@ -63,6 +66,8 @@ class ImpulseSimulator final : public Simulator {
 
     void step(double t0, double dt) override {
         const std::optional<StepError> error = impulse::step(world_, t0, dt, events_);
+        // A NaN is named first: it is the cause of whatever else went wrong.
+        refuse_non_finite(t0 + dt);
         if (error) {
             throw InputError(scene_.file, "", describe(*error));
         }
@@ -90,6 +95,36 @@ class ImpulseSimulator final : public Simulator {
     }
 
   private:
+    // The NaN guard. Finite inputs of sensible size stay finite, but a
+    // scene's numbers can overflow (a gravity of 1e308, a speed of 1e300 over
+    // a long step), and a NaN then passes every "< 0" test unseen: nothing
+    // would interpenetrate again and the trajectory could not be written as
+    // JSON. So every dynamic body's state is checked after every step, and the
+    // first value that is not finite stops the run, named with its time.
+    void refuse_non_finite(double t) const {
+        for (std::size_t i = 0; i < world_.bodies.size(); ++i) {
+            const Body& body = world_.bodies[i];
+            if (body.is_static()) {
+                continue;
+            }
+            const BodyState& s = body.state;
+            const std::pair<const char*, double> values[] = {
+                {"x", s.position.x},  {"y", s.position.y},  {"angle", s.angle},
+                {"vx", s.velocity.x}, {"vy", s.velocity.y}, {"omega", s.angular_velocity}};
+            for (const auto& [quantity, value] : values) {
+                if (std::isfinite(value)) {
+                    continue;
+                }
+                const std::string what = std::isnan(value) ? "NaN" : value > 0 ? "+inf" : "-inf";
+                throw InputError(scene_.file, "",
+                                 "'" + scene_.bodies[i].name + "'." + quantity + " became " + what +
+                                     " at t = " + format_double(t) +
+                                     " s: the scene's numbers overflow double precision (its "
+                                     "gravity, speeds, sizes, dt or duration are too large)");
+            }
+        }
+    }
+
     std::string describe(const StepError& error) const {
         const std::string a = "'" + scene_.bodies[error.body_a].name + "'";
         const std::string b = "'" + scene_.bodies[error.body_b].name + "'";

@@ -26,6 +26,8 @@ verbs:
                      an SVG picture of the motion
   sweep SCENE        the speed/accuracy trade: error against cost over a grid of
                      solver settings, impulse and Box2D
+  stress             numerical stability at the extremes: a matrix of built-in
+                     scenes, every invariant's worst value against its bound
 
 options:
   --help       this text; 'impulse <verb> --help' describes one verb
@@ -129,6 +131,9 @@ int main(int argc, char** argv) {
         }
         if (verb == "sweep") {
             return sweep_verb(rest, out, err);
+        }
+        if (verb == "stress") {
+            return stress_verb(rest, out, err);
         }
         err << "impulse: unknown verb '" << verb << "'; see 'impulse --help'\n";
         return exit_bad_input;

@@ -54,6 +54,7 @@ int diff_verb(const std::vector<std::string>& args, std::ostream& out, std::ostr
 int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int render_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int stress_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 // The sweep's plot: log10 cost against log10 error, every point faint, each
 // family's Pareto front as a line (Box2D's thick and dashed), a legend.

@@ -1,0 +1,200 @@
+// Extremes (numerical stability). A matrix of scenes built here, each at an
+// edge of what the engine is asked to do (mass ratios to 1e6, speeds from 0.01
+// to 1000 m/s, sizes from 0.05 to 50 m, positions 1e4 m from the origin, dt
+// from 1e-4 to 1/30 s, e of 0 and 1, 1e4 simulated seconds, near-parallel
+// edges, corner on corner), run with every invariant that applies checked at
+// every frame and its worst value kept. `impulse stress` prints the table
+// (harness/cli/stress.cpp); CTest runs it (stress.matrix).
+//
+// Also the up-front refusal of a scene that could tunnel without ccd, applied
+// to every case before it runs. Not to every run of the tool: impulse sweep
+// --ccd off,on runs the bullet through its wall on purpose, to measure what
+// catching tunnelling costs.
+#pragma once
+
+#include "body.h"
+#include "scene.h"
+#include "trajectory.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace impulse::harness {
+
+// ---------------------------------------------------------------- tunnelling, refused up front
+
+// Without ccd a pair is tested only at the ends of a step. Over a step the
+// centre of a body moves at most (|v| + |omega| R) dt relative to any point of
+// another (R: its farthest vertex; 0 for a circle, whose turning moves no
+// surface). Each body contains the disc of its inradius r about its centre
+// (a convex shape contains the disc of its smallest centre-to-edge distance),
+// so a straight path through the other body's middle stays inside the pair's
+// overlap for a length of at least 2 (r_a + r_b): the two thicknesses. A step
+// shorter than that cannot jump the overlap, so the end of some step sees it.
+// A scene whose bodies close faster than that at t = 0 is refused: the
+// bullet's 33 m per step against a 0.02 m wall. Only the motion at t = 0 is
+// bounded: speed that gravity or collisions add later is not (ccd is the cure).
+struct TunnellingRefusal {
+    std::string path;    // "bodies[1]" (or "gas") of the faster body of the pair
+    std::string message; // one sentence naming both bodies, the speeds and the cure
+};
+
+// Empty when solver.ccd is on or no pair closes faster than its thicknesses per step.
+std::optional<TunnellingRefusal> tunnelling_refusal(const Scene& scene);
+
+// r of the disc about the centre that the shape contains: the radius of a
+// circle, a polygon's smallest distance from its centre to an edge's line.
+double inradius(const Shape& shape);
+
+// ---------------------------------------------------------------- invariants
+
+// How a row's worst value is judged.
+enum class Bound {
+    at_most, // worst <= bound
+    above,   // worst > bound (a margin that must stay positive)
+    finite,  // worst (the largest magnitude seen) is finite
+};
+
+struct StressRow {
+    std::string invariant; // "energy drift (relative)"
+    double worst = 0.0;
+    double bound = 0.0;
+    Bound kind = Bound::at_most;
+    bool passed = false;
+    std::string detail; // where the worst value happened, or why it failed
+};
+
+// Body a's centre stays on the side of body b's centre that axis points to:
+// dot(x_a - x_b, axis) > 0 at every frame. A body that passes through another
+// (tunnels) ends on the wrong side.
+struct SideRule {
+    int a = 0;
+    int b = 0;
+    Vec2 axis;
+};
+
+// PHYSICS.md's drop of `body`, released at rest above static ground: its
+// collisions, exactly `impacts` of them, against the ladder (impact times and
+// rebound speeds).
+struct DropCheck {
+    int body = 0;
+    int impacts = 0;
+};
+
+// PHYSICS.md's 1D head-on collision of bodies a and b along x.
+struct HeadOnCheck {
+    int a = 0;
+    int b = 0;
+};
+
+// Which invariants a case checks. Every case checks that every value stays
+// finite and that no pair interpenetrates beyond solver.contact_tolerance.
+struct StressChecks {
+    std::vector<SideRule> sides;
+    bool momentum = false;         // free collisions: no static body, no gravity
+    bool angular_momentum = false; // the same, about the origin
+    bool energy_gain = true;       // e <= 1: energy never gained
+    bool energy_drift = false;     // e = 1: energy conserved
+    std::optional<DropCheck> drop;
+    std::optional<HeadOnCheck> head_on;
+    // How far from the origin the scene sits: rounding of positions there is
+    // half an ULP of this per step, and the bounds of quantities made from
+    // positions grow by it (0: no such term).
+    double offset = 0.0;
+};
+
+// The bounds, and why (stress.cpp derives each):
+// relative slack for energy never gained and momentum conserved;
+inline constexpr double stress_relative_slack = 1e-12;
+// energy change per collision at e = 1, in units of DBL_EPSILON of the kinetic
+// energy: the largest seen over 6 x 10^6 random collisions of rotating and
+// non-rotating bodies is 14 (10 in test_stress.cpp's 3 x 10^5), doubled.
+inline constexpr double energy_ulps_per_collision = 32.0;
+
+// Watches a run frame by frame and keeps the worst value of each invariant.
+// Works on any sequence of states, so each checker can be fed a made-up
+// violation.
+class StressMonitor {
+  public:
+    StressMonitor(const Scene& scene, StressChecks checks);
+
+    // Every frame, t = 0 first: the state of every body in scene order.
+    void observe(double t, const std::vector<BodyState>& states);
+    // Every collision, in order.
+    void observe(const TrajectoryEvent& event);
+
+    std::vector<StressRow> rows() const;
+
+  private:
+    struct Totals {
+        Vec2 momentum;
+        double angular_momentum = 0.0;
+        double energy = 0.0;
+        double momentum_scale = 0.0;
+        double angular_momentum_scale = 0.0;
+        double energy_scale = 0.0;
+    };
+    Totals totals_of(const std::vector<BodyState>& states) const;
+
+    const Scene* scene_;
+    StressChecks checks_;
+    long long frames_ = 0;
+    std::vector<Vec2> start_positions_; // potential energy is measured from here
+    std::vector<TrajectoryEvent> events_;
+    std::vector<BodyState> last_;
+
+    // finite
+    double largest_ = 0.0;
+    std::string non_finite_; // the first non-finite value, named
+    // penetration
+    double deepest_ = 0.0;
+    std::string deepest_at_;
+    // sides
+    std::vector<double> margins_;
+    std::vector<std::string> margins_at_;
+    // conservation
+    Totals start_;
+    double momentum_drift_ = 0.0, angular_momentum_drift_ = 0.0;
+    double energy_gain_ = 0.0, energy_drift_ = 0.0;
+    double momentum_scale_ = 0.0, angular_momentum_scale_ = 0.0, energy_scale_ = 0.0;
+    std::string energy_gain_at_, energy_drift_at_;
+};
+
+// ---------------------------------------------------------------- the matrix
+
+struct StressCase {
+    std::string name;
+    std::string description;
+    Scene scene;
+    StressChecks checks;
+    // The engine or the harness must refuse this one up front; the refusal
+    // must contain this text.
+    std::string expected_refusal;
+};
+
+struct StressResult {
+    std::string name;
+    std::string description;
+    bool expected_refusal = false;
+    std::string refusal; // the refusal, when the case was refused up front
+    bool refused_as_expected = false;
+    std::string stopped; // the run stopped on an error after it started
+    std::vector<StressRow> rows;
+    double seconds = 0.0; // wall time of the case (reported, never judged)
+    long long steps = 0;
+    long long collisions = 0;
+
+    // Every row passed, or the case was refused as expected.
+    bool passed() const;
+};
+
+// Every case, in table order.
+std::vector<StressCase> stress_cases();
+
+// Refuses the case up front when it could tunnel (tunnelling_refusal), else
+// runs it through the impulse simulator (the NaN guard and the engine's own
+// refusals included) and checks its invariants.
+StressResult run_stress_case(const StressCase& stress_case);
+
+} // namespace impulse::harness
