@@ -38,6 +38,21 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// A scene's golden is goldens/NAME.json, so a scene file must be NAME.json:
+// otherwise two files (a copy, or one renamed without its name) would write
+// one golden in turn, each blessing losing the other's.
+Scene load_scene_for_golden(const std::string& scene_path) {
+    Scene scene = load_scene(scene_path);
+    if (stem(scene_path) != scene.name) {
+        throw InputError(scene_path, "name",
+                         "is \"" + scene.name + "\" but the file is " +
+                             fs::path(scene_path).filename().string() +
+                             ": a scene's golden is goldens/NAME.json, so its file must be "
+                             "NAME.json");
+    }
+    return scene;
+}
+
 Tolerances tolerances_for(const Scene& scene, const CheckOptions& options) {
     Tolerances t = scene.tolerances;
     if (options.atol) {
@@ -190,7 +205,7 @@ SceneCheck check_scene(const GateRoot& root, const std::string& scene_path,
     check.scene_file = scene_path;
     check.name = stem(scene_path);
     try {
-        check.scene = load_scene(scene_path);
+        check.scene = load_scene_for_golden(scene_path);
         const Scene& scene = *check.scene;
         check.name = scene.name;
         check.golden_file = root.golden_path(scene.name);
@@ -286,7 +301,7 @@ std::vector<SceneCheck> check_scenes(const GateRoot& root, const std::vector<std
 Blessing bless_scene(const GateRoot& root, const std::string& scene_path) {
     Blessing blessing;
     blessing.name = stem(scene_path);
-    const Scene scene = load_scene(scene_path);
+    const Scene scene = load_scene_for_golden(scene_path);
     blessing.name = scene.name;
     blessing.golden_file = root.golden_path(scene.name);
     const Trajectory trajectory = run_scene(scene);

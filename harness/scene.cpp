@@ -82,7 +82,12 @@ std::string describe(const Json& value) {
     case Json::value_t::string: {
         std::string text = value.dump();
         if (text.size() > max_shown) {
-            text = text.substr(0, max_shown) + "...\"";
+            // Never cut a UTF-8 sequence in half: the message must stay valid text.
+            std::size_t cut = max_shown;
+            while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0U) == 0x80U) {
+                --cut;
+            }
+            text = text.substr(0, cut) + "...\"";
         }
         return text;
     }
@@ -93,25 +98,6 @@ std::string describe(const Json& value) {
     default:
         return "an unsupported value";
     }
-}
-
-// Levenshtein distance, for "did you mean" on a mistyped key.
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-    std::vector<std::size_t> row(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j) {
-        row[j] = j;
-    }
-    for (std::size_t i = 1; i <= a.size(); ++i) {
-        std::size_t diagonal = row[0];
-        row[0] = i;
-        for (std::size_t j = 1; j <= b.size(); ++j) {
-            const std::size_t above = row[j];
-            const std::size_t substitution = diagonal + (a[i - 1] == b[j - 1] ? 0 : 1);
-            row[j] = std::min({above + 1, row[j - 1] + 1, substitution});
-            diagonal = above;
-        }
-    }
-    return row[b.size()];
 }
 
 // ---------------------------------------------------------------- the text before JSON
@@ -190,17 +176,10 @@ void reject_unknown_keys(const Node& object, const std::vector<std::string>& kno
         if (std::find(known.begin(), known.end(), key) != known.end()) {
             continue;
         }
-        // Suggest the closest known key when it is a plausible typo: at most two
-        // edits, and fewer than half the key's length (so "x" suggests nothing).
-        std::string message = "unknown key; ";
-        std::size_t best = 3;
-        for (const std::string& candidate : known) {
-            const std::size_t distance = edit_distance(key, candidate);
-            if (distance < best && 2 * distance < key.size()) {
-                best = distance;
-                message = "unknown key (did you mean " + candidate + "?); ";
-            }
-        }
+        // Suggest the closest known key when it is a plausible typo.
+        const std::string closest = closest_known_key(key, known);
+        const std::string message =
+            closest.empty() ? "unknown key; " : "unknown key (did you mean " + closest + "?); ";
         object.member(key).fail(message + "expected one of " + list_of(known));
     }
 }
@@ -440,7 +419,10 @@ Shape read_box(const Node& node) {
     if (!node.json().is_array() || node.json().size() != 2) {
         node.fail("must be the half extents [hx, hy], got " + describe(node.json()));
     }
-    return make_box(read_positive(node.element(0)), read_positive(node.element(1)));
+    // In document order: a function's arguments are evaluated in no fixed order.
+    const double hx = read_positive(node.element(0));
+    const double hy = read_positive(node.element(1));
+    return make_box(hx, hy);
 }
 
 // make_polygon assumes a convex counter-clockwise outline traced once; these

@@ -143,15 +143,8 @@ class DuplicateKeyFinder {
 
     const std::optional<std::string>& first_duplicate() const { return first_duplicate_; }
 
-  private:
-    struct Container {
-        std::string path;
-        bool is_object;
-        std::set<std::string> keys;
-        std::string key;   // objects: the key whose value comes next
-        std::size_t index; // arrays: the index of the value that comes next
-    };
-
+    // Where the parser was about to read a value: the JSON path a number too
+    // large for a double, or a NaN or Infinity token, stands at.
     std::string path_of_next_value() const {
         if (open_.empty()) {
             return "";
@@ -160,6 +153,15 @@ class DuplicateKeyFinder {
         return parent.is_object ? json_member_path(parent.path, parent.key)
                                 : json_element_path(parent.path, parent.index);
     }
+
+  private:
+    struct Container {
+        std::string path;
+        bool is_object;
+        std::set<std::string> keys;
+        std::string key;   // objects: the key whose value comes next
+        std::size_t index; // arrays: the index of the value that comes next
+    };
 
     void value_done() {
         if (!open_.empty() && !open_.back().is_object) {
@@ -170,6 +172,25 @@ class DuplicateKeyFinder {
     std::vector<Container> open_;
     std::optional<std::string> first_duplicate_;
 };
+
+// Levenshtein distance, for "did you mean" on a mistyped key.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) {
+        row[j] = j;
+    }
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t above = row[j];
+            const std::size_t substitution = diagonal + (a[i - 1] == b[j - 1] ? 0 : 1);
+            row[j] = std::min({above + 1, row[j - 1] + 1, substitution});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
 
 bool is_plain_key_char(char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
@@ -189,6 +210,19 @@ std::string json_element_path(const std::string& parent, std::size_t index) {
     return parent + "[" + std::to_string(index) + "]";
 }
 
+std::string closest_known_key(const std::string& key, const std::vector<std::string>& known) {
+    std::string closest;
+    std::size_t best = 3;
+    for (const std::string& candidate : known) {
+        const std::size_t distance = edit_distance(key, candidate);
+        if (distance < best && 2 * distance < key.size()) {
+            best = distance;
+            closest = candidate;
+        }
+    }
+    return closest;
+}
+
 template <class Json> Json parse_strict_json(const std::string& text, const std::string& file) {
     reject_merge_conflict_markers(text, file);
     reject_deep_nesting(text, file);
@@ -200,8 +234,16 @@ template <class Json> Json parse_strict_json(const std::string& text, const std:
                 return finder.on_event(event, parsed);
             });
     } catch (const nlohmann::json::exception& error) {
-        // parse_error for syntax, out_of_range for a number too large for a double.
-        throw InputError(file, "", "not valid JSON: " + shorten_parse_error(error.what()));
+        // parse_error for syntax, out_of_range for a number too large for a double
+        // (nlohmann gives no line for that one). Both name the JSON path when the
+        // parser stopped where a value belongs (1e999, NaN, Infinity, a bad
+        // literal): a golden is megabytes, and the path says which number it is.
+        const std::string reason = shorten_parse_error(error.what());
+        const bool at_value =
+            dynamic_cast<const nlohmann::json::out_of_range*>(&error) != nullptr ||
+            reason.find("while parsing value") != std::string::npos;
+        throw InputError(file, at_value ? finder.path_of_next_value() : "",
+                         "not valid JSON: " + reason);
     }
     if (finder.first_duplicate()) {
         throw InputError(file, *finder.first_duplicate(),

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace impulse::harness {
 
@@ -14,7 +15,8 @@ inline constexpr int max_json_nesting = 64;
 // Parses `text`, throwing InputError naming `file` for: a merge-conflict
 // marker (with its line), nesting deeper than max_json_nesting, a syntax error
 // or a number too large for a double (nlohmann's position and reason,
-// shortened), and a key repeated in one object (with its JSON path), which
+// shortened, and the JSON path when it stopped where a value belongs: 1e999,
+// NaN, Infinity), and a key repeated in one object (with its JSON path), which
 // nlohmann would otherwise resolve silently by keeping one value. Json is
 // nlohmann::json or nlohmann::ordered_json.
 template <class Json> Json parse_strict_json(const std::string& text, const std::string& file);
@@ -23,5 +25,10 @@ template <class Json> Json parse_strict_json(const std::string& text, const std:
 // keys that are not plain identifiers, and `parent[3]`.
 std::string json_member_path(const std::string& parent, const std::string& key);
 std::string json_element_path(const std::string& parent, std::size_t index);
+
+// For "unknown key (did you mean gravity?)": the known key closest to `key` by
+// edit distance when it is a plausible typo (at most two edits, and fewer than
+// half the key's length, so "x" suggests nothing), else "".
+std::string closest_known_key(const std::string& key, const std::vector<std::string>& known);
 
 } // namespace impulse::harness

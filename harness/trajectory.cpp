@@ -220,8 +220,10 @@ void reject_unknown_keys(const Json& object, const std::string& path,
             for (const std::string& name : allowed) {
                 names += (names.empty() ? "" : ", ") + name;
             }
+            const std::string closest = closest_known_key(item.key(), allowed);
             fail(json_member_path(path, item.key()),
-                 "unknown key; the keys allowed here are " + names);
+                 (closest.empty() ? "unknown key" : "unknown key (did you mean " + closest + "?)") +
+                     "; the keys allowed here are " + names);
         }
     }
 }
