@@ -76,8 +76,10 @@ std::optional<Comparison> compare_if_covered(const Trajectory& gold, const Traje
     return comparison;
 }
 
-void check_against_itself(const Trajectory& trajectory, const std::optional<Tolerances>& tolerances) {
-    const std::optional<Comparison> exact = compare_if_covered(trajectory, trajectory, std::nullopt);
+void check_against_itself(const Trajectory& trajectory,
+                          const std::optional<Tolerances>& tolerances) {
+    const std::optional<Comparison> exact =
+        compare_if_covered(trajectory, trajectory, std::nullopt);
     if (!exact->identical || !exact->passed || !exact->structural.empty() ||
         !exact->first_divergences.empty()) {
         finding("compare: a trajectory is not identical to itself:\n" +

@@ -105,8 +105,8 @@ void check_loaded(const Scene& scene) {
     for (const SceneBody& body : scene.bodies) {
         const bool numbers_finite = finite(body.position) && std::isfinite(body.angle) &&
                                     finite(body.velocity) && std::isfinite(body.angular_velocity);
-        const bool mass_ok = body.is_static ? body.mass == 0.0
-                                            : std::isfinite(body.mass) && body.mass > 0.0;
+        const bool mass_ok =
+            body.is_static ? body.mass == 0.0 : std::isfinite(body.mass) && body.mass > 0.0;
         const bool inertia_ok = body.is_static || !body.rotation
                                     ? body.inertia == 0.0
                                     : std::isfinite(body.inertia) && body.inertia > 0.0;
@@ -133,10 +133,10 @@ void simulate(Scene scene) {
         outcome = "refused by the engine"; // its documented answer
     }
     if (verbose) {
-        std::fprintf(stderr, "fuzz_scene: '%s' %lld/%lld steps, work %lld, %.0f ms: %s\n",
-                     scene.name.c_str(), simulator.steps(), step_count(scene),
-                     work_of(simulator.work()),
-                     std::chrono::duration<double, std::milli>(simulator.elapsed()).count(), outcome);
+        std::fprintf(
+            stderr, "fuzz_scene: '%s' %lld/%lld steps, work %lld, %.0f ms: %s\n",
+            scene.name.c_str(), simulator.steps(), step_count(scene), work_of(simulator.work()),
+            std::chrono::duration<double, std::milli>(simulator.elapsed()).count(), outcome);
     }
     if (simulator.steps() < step_count(scene)) {
         return;

@@ -35,7 +35,8 @@ bool digest_mismatch(const std::string& message, std::string& stored, std::strin
     }
     const std::size_t stored_at = at + before.size();
     const std::size_t computed_at = stored_at + 16 + middle.size();
-    if (message.size() < computed_at + 16 || message.compare(stored_at + 16, middle.size(), middle) != 0) {
+    if (message.size() < computed_at + 16 ||
+        message.compare(stored_at + 16, middle.size(), middle) != 0) {
         return false;
     }
     stored = message.substr(stored_at, 16);

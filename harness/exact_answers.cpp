@@ -169,8 +169,8 @@ std::optional<Refusal> drop_refusal(const Scene& scene, const SceneBody& body,
     // A free polygon lands on one corner first (the seed's single contact) and
     // starts to spin, unless that corner is straight below its centre; a disc
     // (impulse through its centre) and a non-rotating body bounce straight.
-    const bool flat = scene.solver.contacts == ContactMode::simultaneous &&
-                      lands_flat_below_centre(body);
+    const bool flat =
+        scene.solver.contacts == ContactMode::simultaneous && lands_flat_below_centre(body);
     if (body.shape.type == ShapeType::polygon && body.rotation &&
         !lands_on_corner_below_centre(body) && !flat) {
         return refuse(Refusal::Where::body,

@@ -115,8 +115,8 @@ TEST_CASE("a stack of ten boxes stays put for 60 s", "[unit][resting]") {
         for (int i = 1; i < 10; ++i) {
             const Body& lower = world.bodies[static_cast<std::size_t>(i)];
             const Body& upper = world.bodies[static_cast<std::size_t>(i + 1)];
-            deepest = std::min(deepest, (upper.state.position.y - 0.25) -
-                                            (lower.state.position.y + 0.25));
+            deepest = std::min(deepest,
+                               (upper.state.position.y - 0.25) - (lower.state.position.y + 0.25));
         }
     }
     CHECK(events.empty()); // resting is no collision
