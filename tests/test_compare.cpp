@@ -687,3 +687,24 @@ TEST_CASE("impulse diff compares two trajectory files", "[compare]") {
         CHECK(impulse_main({"diff", a.str(), a_again.str()}).exit_code == 0);
     }
 }
+
+TEST_CASE("a column that is no body channel is compared bit for bit, never by tolerance",
+          "[compare]") {
+    // Found by fuzz/fuzz_diff: such a column was always reported as a
+    // difference, so a trajectory was not identical to itself.
+    Trajectory gold = sample();
+    gold.columns.push_back("box.spin_energy");
+    for (std::size_t k = 0; k < gold.frames.size(); ++k) {
+        gold.frames[k].push_back(0.5 * static_cast<double>(k));
+    }
+    const Comparison same = compare(gold, gold, std::nullopt);
+    CHECK(same.identical);
+    CHECK(same.structural.empty());
+
+    Trajectory changed = gold;
+    changed.frames[2].back() = 7.0;
+    const Comparison differs = compare(gold, changed, std::nullopt);
+    CHECK_FALSE(differs.identical);
+    REQUIRE(differs.structural.size() == 1);
+    CHECK(differs.structural[0].find("box.spin_energy") != std::string::npos);
+}
