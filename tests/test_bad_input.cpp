@@ -7,6 +7,8 @@
 // test_scene_validation.cpp and test_trajectory.cpp check the readers'
 // messages one by one; these run the built `impulse` as a user does and check
 // the contract around them: exit code, one sentence, nothing written.
+#include "tool_process.h"
+
 #include <catch2/catch.hpp>
 #include <cerrno>
 #include <cstdint>
@@ -23,9 +25,9 @@
 #include <unistd.h>
 #include <vector>
 
-extern char** environ;
-
 namespace fs = std::filesystem;
+using impulse::test::start_tool;
+using impulse::test::wait_for;
 
 namespace {
 
@@ -75,39 +77,7 @@ Outcome impulse_tool(const std::vector<std::string>& args,
     const std::string out_file = (capture.dir / "stdout").string();
     const std::string err_file = (capture.dir / "stderr").string();
 
-    std::vector<std::string> env;
-    for (char** entry = environ; *entry != nullptr; ++entry) {
-        if (std::string(*entry).rfind("CI=", 0) != 0) {
-            env.emplace_back(*entry);
-        }
-    }
-    env.insert(env.end(), extra_env.begin(), extra_env.end());
-    std::vector<std::string> arguments = {IMPULSE_BINARY};
-    arguments.insert(arguments.end(), args.begin(), args.end());
-    std::vector<char*> argv, envp;
-    for (std::string& a : arguments) {
-        argv.push_back(a.data());
-    }
-    argv.push_back(nullptr);
-    for (std::string& e : env) {
-        envp.push_back(e.data());
-    }
-    envp.push_back(nullptr);
-
-    posix_spawn_file_actions_t files;
-    posix_spawn_file_actions_init(&files);
-    posix_spawn_file_actions_addopen(&files, 1, out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                     0600);
-    posix_spawn_file_actions_addopen(&files, 2, err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                     0600);
-    pid_t pid = 0;
-    const int spawned =
-        posix_spawn(&pid, IMPULSE_BINARY, &files, nullptr, argv.data(), envp.data());
-    posix_spawn_file_actions_destroy(&files);
-    REQUIRE(spawned == 0);
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
+    const int status = wait_for(start_tool(args, extra_env, out_file, err_file));
     Outcome o;
     o.exited = WIFEXITED(status);
     o.exit_code = o.exited ? WEXITSTATUS(status) : -1;
