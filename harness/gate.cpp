@@ -3,15 +3,14 @@
 #include "atomic_file.h"
 #include "input_error.h"
 #include "number_format.h"
+#include "parallel_check.h"
 #include "run.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
-#include <thread>
 
 namespace impulse::harness {
 
@@ -279,23 +278,8 @@ SceneCheck check_scene(const GateRoot& root, const std::string& scene_path,
 
 std::vector<SceneCheck> check_scenes(const GateRoot& root, const std::vector<std::string>& paths,
                                      const CheckOptions& options) {
-    std::vector<SceneCheck> results(paths.size());
-    const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(paths.size())));
-    std::atomic<std::size_t> next{0};
-    auto worker = [&] {
-        for (std::size_t i = next++; i < paths.size(); i = next++) {
-            results[i] = check_scene(root, paths[i], options);
-        }
-    };
-    std::vector<std::thread> threads;
-    for (int t = 1; t < jobs; ++t) {
-        threads.emplace_back(worker);
-    }
-    worker();
-    for (std::thread& t : threads) {
-        t.join();
-    }
-    return results;
+    return check_each(paths, options.jobs,
+                      [&](const std::string& path) { return check_scene(root, path, options); });
 }
 
 Blessing bless_scene(const GateRoot& root, const std::string& scene_path) {
