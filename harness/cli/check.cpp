@@ -4,6 +4,7 @@
 #include "gate.h"
 #include "input_error.h"
 #include "number_format.h"
+#include "tolerance.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include <iomanip>
 #include <ostream>
 #include <sstream>
+#include <stdexcept>
 
 namespace impulse::harness::cli {
 
@@ -96,6 +98,23 @@ std::vector<std::string> normalise_jobs(const std::vector<std::string>& args) {
     return out;
 }
 
+// Checked once, before any scene runs: a bad value is one usage error, not
+// the same ERROR row for every scene. A value's validity does not depend on
+// the scene's own tolerances it is applied over.
+void validate_tolerance_options(const CheckOptions& options) {
+    for (const auto& [name, spec] :
+         {std::pair{"--atol", options.atol}, std::pair{"--rtol", options.rtol},
+          std::pair{"--ulp", options.ulp}}) {
+        if (spec) {
+            try {
+                parse_tolerance_option(name, *spec, Tolerances{});
+            } catch (const std::invalid_argument& e) {
+                throw UsageError(e.what());
+            }
+        }
+    }
+}
+
 } // namespace
 
 int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostream& err) {
@@ -117,6 +136,7 @@ int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostr
     if (!options.tolerance_mode && (options.atol || options.rtol || options.ulp)) {
         throw UsageError("--atol, --rtol and --ulp apply in tolerance mode: add --tolerance");
     }
+    validate_tolerance_options(options);
     if (const auto jobs = a.option("--jobs")) {
         options.jobs = parse_count("--jobs", *jobs, 1);
     }
@@ -148,6 +168,12 @@ int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostr
                     << ": unreferenced golden (no scene of that name); scripts/regen-goldens "
                        "--prune deletes it, CI fails on it\n";
             }
+        }
+    }
+
+    for (const SceneCheck& c : checks) {
+        for (const std::string& warning : c.warnings) {
+            err << "warning: " << c.golden_file << ": " << warning << "\n";
         }
     }
 
