@@ -43,8 +43,11 @@ golden matches.
 
 CI mode (CI set to anything but empty, 0 or false): a golden without a scene
 fails too. check never writes to goldens/.
-Exit: 0 all held, 1 a diff, a stale golden or a failed expectation, 2 a broken
-scene, a missing or corrupt golden, or a bad option.
+The golden's engine and solver block are compared too: other settings or
+another engine fail; another version of the same engine is a warning.
+Exit: 0 all held, 1 a diff, a stale golden, other settings or a failed
+expectation, 2 a broken or unreadable scene or golden, a bad option, or a
+scene that could not be checked (it ran out of memory: its row says so).
 )";
 
 const char* status_word(SceneCheck::Status status) {
