@@ -118,6 +118,35 @@ void validate_tolerance_options(const CheckOptions& options) {
     }
 }
 
+// Goldens without a scene: a failed row each in CI mode, a warning otherwise.
+void add_unreferenced_goldens(const GateRoot& root, bool ci, std::vector<SceneCheck>& checks,
+                              std::ostream& err) {
+    for (const std::string& golden : unreferenced_goldens(root)) {
+        if (ci) {
+            SceneCheck orphan;
+            orphan.name = std::filesystem::path(golden).stem().string();
+            orphan.golden_file = golden;
+            orphan.status = SceneCheck::Status::failed;
+            orphan.message = golden + ": unreferenced golden: no canonical scene is named '" +
+                             orphan.name + "'; delete it with scripts/regen-goldens --prune";
+            checks.push_back(orphan);
+        } else {
+            err << "warning: " << golden
+                << ": unreferenced golden (no scene of that name); scripts/regen-goldens "
+                   "--prune deletes it, CI fails on it\n";
+        }
+    }
+}
+
+// Notes that never change a scene's status (a golden from another version).
+void print_warnings(const std::vector<SceneCheck>& checks, std::ostream& err) {
+    for (const SceneCheck& c : checks) {
+        for (const std::string& warning : c.warnings) {
+            err << "warning: " << c.golden_file << ": " << warning << "\n";
+        }
+    }
+}
+
 } // namespace
 
 int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostream& err) {
@@ -157,28 +186,9 @@ int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostr
     std::vector<SceneCheck> checks = check_scenes(root, paths, options);
 
     if (all) {
-        for (const std::string& golden : unreferenced_goldens(root)) {
-            if (ci) {
-                SceneCheck orphan;
-                orphan.name = std::filesystem::path(golden).stem().string();
-                orphan.golden_file = golden;
-                orphan.status = SceneCheck::Status::failed;
-                orphan.message = golden + ": unreferenced golden: no canonical scene is named '" +
-                                 orphan.name + "'; delete it with scripts/regen-goldens --prune";
-                checks.push_back(orphan);
-            } else {
-                err << "warning: " << golden
-                    << ": unreferenced golden (no scene of that name); scripts/regen-goldens "
-                       "--prune deletes it, CI fails on it\n";
-            }
-        }
+        add_unreferenced_goldens(root, ci, checks, err);
     }
-
-    for (const SceneCheck& c : checks) {
-        for (const std::string& warning : c.warnings) {
-            err << "warning: " << c.golden_file << ": " << warning << "\n";
-        }
-    }
+    print_warnings(checks, err);
 
     std::size_t width = 4;
     for (const SceneCheck& c : checks) {
