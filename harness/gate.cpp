@@ -1,17 +1,17 @@
 #include "gate.h"
 
 #include "atomic_file.h"
+#include "golden_settings.h"
 #include "input_error.h"
 #include "number_format.h"
+#include "parallel_check.h"
 #include "run.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
-#include <thread>
 
 namespace impulse::harness {
 
@@ -36,6 +36,58 @@ std::string stem(const std::string& path) {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Whether anything is at `path`, the entry itself and not what it points to:
+// a dangling symlink or a symlink loop exists (and fails to read with a
+// sentence); an error other than "not there" (no permission) counts as there,
+// so reading it says what is wrong instead of "missing".
+bool entry_exists(const std::string& path) {
+    std::error_code error;
+    return fs::symlink_status(path, error).type() != fs::file_type::not_found;
+}
+
+std::string lower_case(std::string text) {
+    for (char& c : text) {
+        if (c >= 'A' && c <= 'Z') {
+            c = static_cast<char>(c - 'A' + 'a');
+        }
+    }
+    return text;
+}
+
+const char* case_reason = "differ only in case: on a case-insensitive file system (macOS, "
+                          "Windows) they are one file and their goldens would overwrite each "
+                          "other; rename one";
+
+// Scene files whose names (their goldens' names) differ only in case are
+// refused as a pair. The same name twice is one scene named twice, not a clash.
+void refuse_case_collisions(const std::vector<std::string>& scene_paths) {
+    for (std::size_t i = 0; i < scene_paths.size(); ++i) {
+        for (std::size_t j = i + 1; j < scene_paths.size(); ++j) {
+            const std::string a = stem(scene_paths[i]), b = stem(scene_paths[j]);
+            if (a != b && lower_case(a) == lower_case(b)) {
+                throw InputError(scene_paths[i], "", "and " + scene_paths[j] + " " + case_reason);
+            }
+        }
+    }
+}
+
+// A golden named like the scene but for case (goldens/Drop.json for scene
+// drop) is the scene's golden on a case-insensitive file system and an
+// orphan elsewhere: refused, never blessed over or pruned.
+void refuse_case_variant_golden(const GateRoot& root, const std::string& scene_path,
+                                const std::string& name) {
+    std::error_code error;
+    for (fs::directory_iterator it(root.goldens_dir(), error), end; !error && it != end;
+         it.increment(error)) {
+        const std::string golden_name = it->path().stem().string();
+        if (it->path().extension() == ".json" && golden_name != name &&
+            lower_case(golden_name) == lower_case(name)) {
+            throw InputError(it->path().string(), "",
+                             "and the scene file " + scene_path + " " + case_reason);
+        }
+    }
 }
 
 // A scene's golden is goldens/NAME.json, so a scene file must be NAME.json:
@@ -108,6 +160,48 @@ std::string failed_expectations(const std::vector<ExpectationResult>& results, i
     return out.str();
 }
 
+// Fails the check, with one line and the details, for each thing that
+// differs: a stale golden, other settings, the data, a broken expectation.
+void record_verdict(SceneCheck& check) {
+    int failed_count = 0;
+    const std::string failed = failed_expectations(check.expectations, failed_count);
+    std::ostringstream details;
+    std::vector<std::string> reasons;
+    if (check.stale) {
+        reasons.push_back("stale golden: the scene changed since it was blessed; if that was "
+                          "intended, run scripts/regen-goldens " +
+                          check.name);
+    }
+    const SettingsComparison settings = compare_settings(*check.gold, *check.value);
+    check.warnings = settings.notes;
+    if (!settings.differences.empty()) {
+        std::string joined;
+        details << "settings that differ from the golden's:\n";
+        for (const std::string& d : settings.differences) {
+            joined += (joined.empty() ? "" : "; ") + d;
+            details << "  " << d << "\n";
+        }
+        reasons.push_back("the golden was recorded with other settings: " + joined);
+    }
+    if (!check.comparison->passed) {
+        reasons.push_back(first_divergence_line(*check.comparison));
+        details << describe(*check.comparison);
+    }
+    if (failed_count > 0) {
+        reasons.push_back(std::to_string(failed_count) + " declared expectation" +
+                          (failed_count == 1 ? "" : "s") + " failed");
+        details << "failed expectations:\n" << failed;
+    }
+    if (!reasons.empty()) {
+        check.status = SceneCheck::Status::failed;
+        check.message = reasons.front();
+        for (std::size_t i = 1; i < reasons.size(); ++i) {
+            check.message += "; " + reasons[i];
+        }
+        check.details = details.str();
+    }
+}
+
 } // namespace
 
 std::string GateRoot::scenes_dir() const {
@@ -136,13 +230,17 @@ std::vector<std::string> canonical_scenes(const GateRoot& root) {
         throw InputError(dir, "",
                          "no scene folder here; run from the repository root or give --root");
     }
+    // Every NAME.json entry is a scene, whatever it is: one that cannot be
+    // read (a dangling symlink, a folder) is that scene's error when it is
+    // loaded, never skipped, and its golden is never pruned.
     std::vector<std::string> paths;
     for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
-        if (entry.is_regular_file() && entry.path().extension() == ".json") {
+        if (entry.path().extension() == ".json") {
             paths.push_back(entry.path().string());
         }
     }
     std::sort(paths.begin(), paths.end());
+    refuse_case_collisions(paths);
     return paths;
 }
 
@@ -164,13 +262,16 @@ std::vector<std::string> scenes_named(const GateRoot& root,
     for (const std::string& argument : arguments) {
         paths.push_back(resolve_scene(root, argument));
     }
+    refuse_case_collisions(paths);
     return paths;
 }
 
 std::vector<std::string> unreferenced_goldens(const GateRoot& root) {
+    // Lower case: a golden differing from a scene's name only in case is
+    // refused by check and bless for that scene, never pruned.
     std::vector<std::string> names;
     for (const std::string& path : canonical_scenes(root)) {
-        names.push_back(stem(path));
+        names.push_back(lower_case(stem(path)));
     }
     std::vector<std::string> unreferenced;
     std::error_code error;
@@ -178,7 +279,7 @@ std::vector<std::string> unreferenced_goldens(const GateRoot& root) {
         return unreferenced;
     }
     for (const fs::directory_entry& entry : fs::directory_iterator(root.goldens_dir())) {
-        const std::string name = entry.path().stem().string();
+        const std::string name = lower_case(entry.path().stem().string());
         if (entry.path().extension() == ".json" &&
             std::find(names.begin(), names.end(), name) == names.end()) {
             unreferenced.push_back(entry.path().string());
@@ -217,8 +318,8 @@ SceneCheck check_scene(const GateRoot& root, const std::string& scene_path,
         check.value = run_scene(scene);
         check.expectations = evaluate_expectations(scene, *check.value);
 
-        std::error_code error;
-        if (!fs::exists(check.golden_file, error)) {
+        refuse_case_variant_golden(root, scene_path, scene.name);
+        if (!entry_exists(check.golden_file)) {
             throw InputError(check.golden_file, "",
                              "no golden for scene '" + scene.name +
                                  "'; bless it with scripts/regen-goldens " + scene.name);
@@ -240,32 +341,7 @@ SceneCheck check_scene(const GateRoot& root, const std::string& scene_path,
         check.comparison = compare(*check.gold, *check.value, tolerances);
         check.stale = check.gold->scene_sha256 != scene.sha256;
 
-        int failed_count = 0;
-        const std::string failed = failed_expectations(check.expectations, failed_count);
-        std::ostringstream details;
-        std::vector<std::string> reasons;
-        if (check.stale) {
-            reasons.push_back("stale golden: the scene changed since it was blessed; if that was "
-                              "intended, run scripts/regen-goldens " +
-                              scene.name);
-        }
-        if (!check.comparison->passed) {
-            reasons.push_back(first_divergence_line(*check.comparison));
-            details << describe(*check.comparison);
-        }
-        if (failed_count > 0) {
-            reasons.push_back(std::to_string(failed_count) + " declared expectation" +
-                              (failed_count == 1 ? "" : "s") + " failed");
-            details << "failed expectations:\n" << failed;
-        }
-        if (!reasons.empty()) {
-            check.status = SceneCheck::Status::failed;
-            check.message = reasons.front();
-            for (std::size_t i = 1; i < reasons.size(); ++i) {
-                check.message += "; " + reasons[i];
-            }
-            check.details = details.str();
-        }
+        record_verdict(check);
     } catch (const InputError& e) {
         check.status = SceneCheck::Status::error;
         check.message = e.what();
@@ -279,23 +355,8 @@ SceneCheck check_scene(const GateRoot& root, const std::string& scene_path,
 
 std::vector<SceneCheck> check_scenes(const GateRoot& root, const std::vector<std::string>& paths,
                                      const CheckOptions& options) {
-    std::vector<SceneCheck> results(paths.size());
-    const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(paths.size())));
-    std::atomic<std::size_t> next{0};
-    auto worker = [&] {
-        for (std::size_t i = next++; i < paths.size(); i = next++) {
-            results[i] = check_scene(root, paths[i], options);
-        }
-    };
-    std::vector<std::thread> threads;
-    for (int t = 1; t < jobs; ++t) {
-        threads.emplace_back(worker);
-    }
-    worker();
-    for (std::thread& t : threads) {
-        t.join();
-    }
-    return results;
+    return check_each(paths, options.jobs,
+                      [&](const std::string& path) { return check_scene(root, path, options); });
 }
 
 Blessing bless_scene(const GateRoot& root, const std::string& scene_path) {
@@ -316,8 +377,8 @@ Blessing bless_scene(const GateRoot& root, const std::string& scene_path) {
     }
     const std::string text = write_trajectory(trajectory);
 
-    std::error_code error;
-    if (!fs::exists(blessing.golden_file, error)) {
+    refuse_case_variant_golden(root, scene_path, scene.name);
+    if (!entry_exists(blessing.golden_file)) {
         blessing.outcome = Blessing::Outcome::created;
     } else {
         std::string old_text;
@@ -345,8 +406,15 @@ Blessing bless_scene(const GateRoot& root, const std::string& scene_path) {
             }
         }
     }
+    std::error_code error;
     fs::create_directories(root.goldens_dir(), error);
-    write_file_atomically(blessing.golden_file, text);
+    try {
+        write_file_atomically(blessing.golden_file, text);
+    } catch (const InputError& e) {
+        // The scene is fine; the folder or the disk is not.
+        blessing.outcome = Blessing::Outcome::unwritten;
+        blessing.summary = e.what();
+    }
     return blessing;
 }
 

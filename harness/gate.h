@@ -21,17 +21,19 @@ struct GateRoot {
 // CI mode: the CI environment variable set to anything but empty, "0" or "false".
 bool ci_mode();
 
-// Canonical scene files under the root, sorted by name. Throws InputError when
-// the folder is missing.
+// Canonical scene files under the root, sorted by name: every NAME.json entry,
+// readable or not (a dangling symlink is a scene that fails to load). Throws
+// InputError when the folder is missing or two names differ only in case.
 std::vector<std::string> canonical_scenes(const GateRoot& root);
 // A scene argument is a path when it names an existing file or ends in .json,
 // otherwise the name of a canonical scene.
 std::string resolve_scene(const GateRoot& root, const std::string& argument);
 // The scene files a verb works on: every canonical scene when no argument
-// names one, otherwise each argument resolved as above.
+// names one, otherwise each argument resolved as above. Throws InputError
+// naming both files when two names differ only in case.
 std::vector<std::string> scenes_named(const GateRoot& root,
                                       const std::vector<std::string>& arguments);
-// Goldens with no canonical scene of their name.
+// Goldens with no canonical scene of their name, even ignoring case.
 std::vector<std::string> unreferenced_goldens(const GateRoot& root);
 
 // Keeps the scenes of shard k of n (1-based): a scene's shard depends on its
@@ -53,7 +55,9 @@ std::vector<SceneCheck> check_scenes(const GateRoot& root, const std::vector<std
 
 // What bless did to one golden.
 struct Blessing {
-    enum class Outcome { created, changed, unchanged, refused };
+    // unwritten: the golden could not be written (read-only folder, disk
+    // full); summary holds the sentence naming it.
+    enum class Outcome { created, changed, unchanged, refused, unwritten };
     std::string name;
     std::string golden_file;
     Outcome outcome = Outcome::unchanged;

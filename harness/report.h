@@ -20,9 +20,10 @@ struct SceneCheck {
     std::string scene_file;
     std::string golden_file;
     Status status = Status::passed;
-    bool stale = false;  // the golden's scene_sha256 differs from the scene's
-    std::string message; // one sentence for failed / error
-    std::string details; // multi-line text: divergences, failed expectations
+    bool stale = false;                // the golden's scene_sha256 differs from the scene's
+    std::string message;               // one sentence for failed / error
+    std::string details;               // multi-line text: divergences, failed expectations
+    std::vector<std::string> warnings; // printed to stderr; never change the status
     std::optional<Comparison> comparison;
     std::vector<ExpectationResult> expectations;
     std::optional<Scene> scene;

@@ -19,7 +19,16 @@ inline constexpr int max_json_nesting = 64;
 // NaN, Infinity), and a key repeated in one object (with its JSON path), which
 // nlohmann would otherwise resolve silently by keeping one value. Json is
 // nlohmann::json or nlohmann::ordered_json.
-template <class Json> Json parse_strict_json(const std::string& text, const std::string& file);
+//
+// `minus_zero` says how the integer token -0 reads. JSON allows it and
+// nlohmann reads it as the integer 0, losing the sign; trajectories promise
+// that -0.0 and +0.0 are told apart in every spelling, so their reader asks
+// for negative_zero (-0 becomes the double -0.0). Scenes keep the plain
+// reading, so that no scene's fingerprint changes.
+enum class MinusZero { integer_zero, negative_zero };
+template <class Json>
+Json parse_strict_json(const std::string& text, const std::string& file,
+                       MinusZero minus_zero = MinusZero::integer_zero);
 
 // JSON paths as messages print them: `parent.key`, or `parent["odd key"]` for
 // keys that are not plain identifiers, and `parent[3]`.

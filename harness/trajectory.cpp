@@ -419,7 +419,7 @@ std::vector<TrajectoryEvent> read_events(const Json& value) {
 }
 
 Trajectory read_validated(const std::string& text, const std::string& file) {
-    const Json top = parse_strict_json<Json>(text, file);
+    const Json top = parse_strict_json<Json>(text, file, MinusZero::negative_zero);
     if (!top.is_object()) {
         fail("", "the top level must be a JSON object, " + got(top));
     }

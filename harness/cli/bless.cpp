@@ -23,7 +23,8 @@ new, changed (and what moved, by how much), unchanged and removed.
   --prune      delete goldens whose scene no longer exists
 
 Refuses to run in CI mode (CI set to anything but empty, 0 or false): CI never
-writes goldens. Exit: 0 done, 1 a scene was refused, 2 bad input.
+writes goldens. Exit: 0 done, 1 a scene was refused, 2 bad input or a golden
+that could not be written.
 )";
 
 } // namespace
@@ -44,6 +45,7 @@ int bless_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
     std::vector<std::string> paths = scenes_named(root, a.positional);
 
     int created = 0, changed = 0, unchanged = 0, refused = 0, removed = 0, broken = 0;
+    int unwritten = 0; // a scene that ran fine but whose golden could not be written
     for (const std::string& path : paths) {
         try {
             const Blessing b = bless_scene(root, path);
@@ -63,6 +65,11 @@ int bless_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
             case Blessing::Outcome::refused:
                 ++refused;
                 out << "  REFUSED    " << b.name << ": " << b.summary;
+                break;
+            case Blessing::Outcome::unwritten:
+                ++unwritten;
+                out << "  NOT WRITTEN " << b.name << ": could not write the golden\n";
+                err << b.summary << "\n";
                 break;
             }
         } catch (const InputError& e) {
@@ -87,8 +94,11 @@ int bless_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
     if (broken > 0) {
         out << ", " << broken << " broken scene" << (broken == 1 ? "" : "s");
     }
+    if (unwritten > 0) {
+        out << ", " << unwritten << " could not write the golden";
+    }
     out << "\n";
-    return broken > 0 ? exit_bad_input : refused > 0 ? exit_failed : exit_ok;
+    return broken > 0 || unwritten > 0 ? exit_bad_input : refused > 0 ? exit_failed : exit_ok;
 }
 
 } // namespace impulse::harness::cli

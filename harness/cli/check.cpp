@@ -4,6 +4,7 @@
 #include "gate.h"
 #include "input_error.h"
 #include "number_format.h"
+#include "tolerance.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include <iomanip>
 #include <ostream>
 #include <sstream>
+#include <stdexcept>
 
 namespace impulse::harness::cli {
 
@@ -41,8 +43,11 @@ golden matches.
 
 CI mode (CI set to anything but empty, 0 or false): a golden without a scene
 fails too. check never writes to goldens/.
-Exit: 0 all held, 1 a diff, a stale golden or a failed expectation, 2 a broken
-scene, a missing or corrupt golden, or a bad option.
+The golden's engine and solver block are compared too: other settings or
+another engine fail; another version of the same engine is a warning.
+Exit: 0 all held, 1 a diff, a stale golden, other settings or a failed
+expectation, 2 a broken or unreadable scene or golden, a bad option, or a
+scene that could not be checked (it ran out of memory: its row says so).
 )";
 
 const char* status_word(SceneCheck::Status status) {
@@ -96,6 +101,52 @@ std::vector<std::string> normalise_jobs(const std::vector<std::string>& args) {
     return out;
 }
 
+// Checked once, before any scene runs: a bad value is one usage error, not
+// the same ERROR row for every scene. A value's validity does not depend on
+// the scene's own tolerances it is applied over.
+void validate_tolerance_options(const CheckOptions& options) {
+    for (const auto& [name, spec] :
+         {std::pair{"--atol", options.atol}, std::pair{"--rtol", options.rtol},
+          std::pair{"--ulp", options.ulp}}) {
+        if (spec) {
+            try {
+                parse_tolerance_option(name, *spec, Tolerances{});
+            } catch (const std::invalid_argument& e) {
+                throw UsageError(e.what());
+            }
+        }
+    }
+}
+
+// Goldens without a scene: a failed row each in CI mode, a warning otherwise.
+void add_unreferenced_goldens(const GateRoot& root, bool ci, std::vector<SceneCheck>& checks,
+                              std::ostream& err) {
+    for (const std::string& golden : unreferenced_goldens(root)) {
+        if (ci) {
+            SceneCheck orphan;
+            orphan.name = std::filesystem::path(golden).stem().string();
+            orphan.golden_file = golden;
+            orphan.status = SceneCheck::Status::failed;
+            orphan.message = golden + ": unreferenced golden: no canonical scene is named '" +
+                             orphan.name + "'; delete it with scripts/regen-goldens --prune";
+            checks.push_back(orphan);
+        } else {
+            err << "warning: " << golden
+                << ": unreferenced golden (no scene of that name); scripts/regen-goldens "
+                   "--prune deletes it, CI fails on it\n";
+        }
+    }
+}
+
+// Notes that never change a scene's status (a golden from another version).
+void print_warnings(const std::vector<SceneCheck>& checks, std::ostream& err) {
+    for (const SceneCheck& c : checks) {
+        for (const std::string& warning : c.warnings) {
+            err << "warning: " << c.golden_file << ": " << warning << "\n";
+        }
+    }
+}
+
 } // namespace
 
 int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostream& err) {
@@ -117,6 +168,7 @@ int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostr
     if (!options.tolerance_mode && (options.atol || options.rtol || options.ulp)) {
         throw UsageError("--atol, --rtol and --ulp apply in tolerance mode: add --tolerance");
     }
+    validate_tolerance_options(options);
     if (const auto jobs = a.option("--jobs")) {
         options.jobs = parse_count("--jobs", *jobs, 1);
     }
@@ -134,22 +186,9 @@ int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostr
     std::vector<SceneCheck> checks = check_scenes(root, paths, options);
 
     if (all) {
-        for (const std::string& golden : unreferenced_goldens(root)) {
-            if (ci) {
-                SceneCheck orphan;
-                orphan.name = std::filesystem::path(golden).stem().string();
-                orphan.golden_file = golden;
-                orphan.status = SceneCheck::Status::failed;
-                orphan.message = golden + ": unreferenced golden: no canonical scene is named '" +
-                                 orphan.name + "'; delete it with scripts/regen-goldens --prune";
-                checks.push_back(orphan);
-            } else {
-                err << "warning: " << golden
-                    << ": unreferenced golden (no scene of that name); scripts/regen-goldens "
-                       "--prune deletes it, CI fails on it\n";
-            }
-        }
+        add_unreferenced_goldens(root, ci, checks, err);
     }
+    print_warnings(checks, err);
 
     std::size_t width = 4;
     for (const SceneCheck& c : checks) {

@@ -1,0 +1,26 @@
+// Checking scenes on several threads (`check -j N`): results in the order
+// given, identical for any number of threads, and one scene's failure never
+// takes the others or the process down.
+#pragma once
+
+#include "report.h"
+
+#include <exception>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace impulse::harness {
+
+// Runs check_one for every scene path on up to `jobs` threads (fewer when the
+// system refuses to start more). Any exception escaping check_one becomes
+// that scene's ERROR row (see error_row), whichever thread ran it.
+std::vector<SceneCheck> check_each(const std::vector<std::string>& scene_paths, int jobs,
+                                   const std::function<SceneCheck(const std::string&)>& check_one);
+
+// The ERROR row of a scene whose check threw: "PATH: ran out of memory while
+// checking this scene" for std::bad_alloc, "PATH: internal error while
+// checking this scene: WHAT" for any other exception.
+SceneCheck error_row(const std::string& scene_path, const std::exception_ptr& failure);
+
+} // namespace impulse::harness
