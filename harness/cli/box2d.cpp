@@ -10,6 +10,7 @@
 #include "observables.h"
 #include "run.h"
 #include "simulator.h"
+#include "tunnelling.h"
 
 #include <algorithm>
 #include <cmath>
@@ -184,10 +185,13 @@ Comparison compare_scene(const std::string& path, const Options& options) {
     }
     const Scene impulse_scene = with_overrides(scene, overrides);
 
-    StoppingSimulator impulse_simulator(make_impulse_simulator(impulse_scene));
-    Trajectory impulse = record(impulse_simulator, impulse_scene);
+    // Both refusals come before either run: a scene that would tunnel
+    // unseen, and one Box2D cannot represent (single_precision.h).
     std::vector<std::string> warnings;
     const std::unique_ptr<Simulator> box2d_simulator = make_box2d_simulator(box2d_scene, warnings);
+    refuse_tunnelling(impulse_scene);
+    StoppingSimulator impulse_simulator(make_impulse_simulator(impulse_scene));
+    Trajectory impulse = record(impulse_simulator, impulse_scene);
     Trajectory box2d = record(*box2d_simulator, box2d_scene);
     if (const std::optional<double> end = impulse_simulator.stopped_at()) {
         truncate(impulse, *end);

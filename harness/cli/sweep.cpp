@@ -653,6 +653,9 @@ int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
         err << "warning: " << warning << "\n";
     }
     const SweepConfig config = config_from(a, scene);
+    for (const std::string& warning : tunnelling_warnings(scene, config)) {
+        err << "warning: " << warning << "\n";
+    }
 #ifndef IMPULSE_WITH_BOX2D
     if (config.box2d && !a.has_flag("--no-box2d")) {
         err << "sweep: this tool was built without Box2D; impulse points only\n";
