@@ -284,7 +284,13 @@ std::vector<SceneCheck> check_scenes(const GateRoot& root, const std::vector<std
     std::atomic<std::size_t> next{0};
     auto worker = [&] {
         for (std::size_t i = next++; i < paths.size(); i = next++) {
+            if (options.on_start) {
+                options.on_start(paths[i]);
+            }
             results[i] = check_scene(root, paths[i], options);
+            if (options.on_done) {
+                options.on_done();
+            }
         }
     };
     std::vector<std::thread> threads;

@@ -5,6 +5,7 @@
 #include "exact_answers.h"
 #include "input_error.h"
 #include "manifold.h"
+#include "progress.h"
 #include "simulator.h"
 
 #include <algorithm>
@@ -432,6 +433,7 @@ StressResult run_stress_case(const StressCase& stress_case) {
             }
             read_states();
             monitor.observe(static_cast<double>(k + 1) * scene.dt, states);
+            note_simulated_time(static_cast<double>(k + 1) * scene.dt, scene.duration);
             ++result.steps;
         }
     } catch (const InputError& error) {

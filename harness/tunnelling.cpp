@@ -88,8 +88,28 @@ double gravity_gain(const Scene& scene, const SceneBody& body, double lowest_top
     return std::min(g * scene.duration, by_energy);
 }
 
+// How far the body's centre can travel over the run. Its speed at time t is
+// at most |v0| + |g| t (nothing but gravity speeds it up, and a bounce off a
+// static body with e <= 1 only slows its fall) and at most |v0| + gain, so
+// the distance is the integral of the smaller of the two.
+double travel(const Scene& scene, const SceneBody& body, double gain) {
+    const double v0 = length(body.velocity);
+    const double T = scene.duration;
+    if (gain <= 0.0) {
+        return v0 * T;
+    }
+    const double g = length(scene.gravity);
+    const double t_cap = gain / g; // when |v0| + g t reaches |v0| + gain
+    if (t_cap >= T) {
+        return v0 * T + 0.5 * g * T * T;
+    }
+    return v0 * T + 0.5 * gain * t_cap + gain * (T - t_cap);
+}
+
 struct Reach {
     double radius = 0.0;  // inradius: half the body's thickness
+    double extent = 0.0;  // the farthest point from the centre
+    double travel = 0.0;  // how far the centre can get over the run (travel)
     double turning = 0.0; // |omega| R: how fast turning moves the surface
     double gain = 0.0;    // what gravity can add to its speed (gravity_gain)
     double speed = 0.0;   // |v0| + turning + gain: the fastest it can be
@@ -112,6 +132,9 @@ std::vector<Reach> reaches_of(const Scene& scene) {
         r.turning =
             body.is_static ? 0.0 : std::abs(body.angular_velocity) * turning_reach(body.shape);
         r.gain = gravity_gain(scene, body, lowest_top);
+        r.extent =
+            body.shape.type == ShapeType::circle ? body.shape.radius : turning_reach(body.shape);
+        r.travel = body.is_static ? 0.0 : travel(scene, body, r.gain);
         r.speed = length(body.velocity) + r.turning + r.gain;
     }
     return out;
@@ -130,10 +153,11 @@ TunnellingRefusal refusal(const Scene& scene, std::size_t fast, std::size_t slow
     const std::string cure =
         scene.solver.stepping == Stepping::local
             ? "use dt below " + short_number(safe_dt) + " s (ccd needs \"stepping\": \"world\")"
-            : "set \"solver\": {\"ccd\": true}, or use dt below " + short_number(safe_dt) + " s";
+            : "set \"ccd\": true in the solver block, or use dt below " + short_number(safe_dt) +
+                  " s";
     return TunnellingRefusal{
         body_path(scene, fast),
-        quoted(a.name) + " and " + quoted(b.name) + " can close at up to " + short_number(closing) +
+        quoted(a.name) + " and " + quoted(b.name) + " close at up to " + short_number(closing) +
             " m/s" + gravity + ": " + short_number(closing * scene.dt) +
             " m per step of dt = " + short_number(scene.dt) +
             " s, at least their combined thickness of " + short_number(thickness) +
@@ -187,6 +211,12 @@ std::optional<TunnellingRefusal> tunnelling_refusal(const Scene& scene) {
                                    reach[k].turning + reach[i].gain + reach[k].gain;
             const double thickness = 2.0 * (reach[i].radius + reach[k].radius);
             if (closing * scene.dt < thickness) {
+                continue;
+            }
+            // A pair too far apart to touch within the run cannot tunnel:
+            // the rods of `rod`, 8 m apart, fall 1.5 m each.
+            const double gap = length(a.position - b.position) - reach[i].extent - reach[k].extent;
+            if (gap > reach[i].travel + reach[k].travel) {
                 continue;
             }
             const bool a_faster = reach[i].speed >= reach[k].speed;

@@ -8,6 +8,7 @@
 #include "gate.h"
 #include "input_error.h"
 #include "observables.h"
+#include "progress.h"
 #include "run.h"
 #include "simulator.h"
 #include "tunnelling.h"
@@ -56,6 +57,8 @@ runs are compared up to its last complete step, and the output says so.
   --velocity-iterations N      Box2D's velocity iterations (default 8)
   --position-iterations N      Box2D's position iterations (default 3)
   --scene-integrator           run the impulse engine with the scene's own integrator
+  --quiet                      no progress bar (drawn on standard error only when that
+                               is a terminal, after about a second of work)
 
 Exit: 0 every observable within its tolerance, 1 one is not, 2 bad input (a
 broken scene, a bad option, a shape Box2D cannot take, a build without Box2D).
@@ -392,7 +395,7 @@ int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
     const Arguments a = parse_arguments(
         args,
         {"--root", "--out", "--dt", "--substeps", "--velocity-iterations", "--position-iterations"},
-        {"--help", "--json", "--scene-integrator"});
+        {"--help", "--json", "--scene-integrator", "--quiet"});
     if (a.has_flag("--help")) {
         out << box2d_help;
         return exit_ok;
@@ -423,8 +426,14 @@ int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
     // Everything is computed before anything is written: a bad scene or a
     // shape Box2D cannot take is one sentence on stderr, with no half output.
     std::vector<Comparison> comparisons;
-    for (const std::string& path : paths) {
-        comparisons.push_back(compare_scene(path, options));
+    {
+        Progress progress("box2d", progress_wanted(a.has_flag("--quiet")));
+        progress.set_total(paths.size(), "scenes");
+        for (const std::string& path : paths) {
+            progress.set_item(std::filesystem::path(path).stem().string());
+            comparisons.push_back(compare_scene(path, options));
+            progress.advance();
+        }
     }
     for (const Comparison& c : comparisons) {
         for (const std::string& warning : c.warnings) {

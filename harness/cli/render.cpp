@@ -4,6 +4,7 @@
 #include "atomic_file.h"
 #include "cli.h"
 #include "input_error.h"
+#include "progress.h"
 #include "run.h"
 
 #include <cstddef>
@@ -30,6 +31,8 @@ The file's "schema" decides what it is:
 
   --out FILE.svg   write the picture here (atomically) instead of standard output
   --root DIR       where harness/scenes/ is (default: the current directory)
+  --quiet          no progress bar (drawn on standard error only when that is a
+                   terminal, after about a second of work)
 )";
 
 // A trajectory of a long run is large; beyond this it is refused.
@@ -74,7 +77,7 @@ bool starts_with(const std::string& text, const std::string& prefix) {
 } // namespace
 
 int render_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-    const Arguments a = parse_arguments(args, {"--out", "--root"}, {"--help"});
+    const Arguments a = parse_arguments(args, {"--out", "--root"}, {"--help", "--quiet"});
     if (a.has_flag("--help")) {
         out << render_help;
         return exit_ok;
@@ -94,6 +97,7 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
         for (const std::string& warning : scene.warnings) {
             err << "warning: " << warning << "\n";
         }
+        const Progress progress("render " + scene.name, progress_wanted(a.has_flag("--quiet")));
         svg = render_svg(scene, run_scene(scene));
     } else if (schema.empty() || starts_with(schema, "impulse/trajectory@")) {
         // An empty schema here means the text is not JSON: the trajectory

@@ -2,6 +2,7 @@
 #include "stress.h"
 
 #include "cli.h"
+#include "progress.h"
 
 #include <algorithm>
 #include <chrono>
@@ -41,6 +42,8 @@ its row shows the refusal. Each case's wall time is shown, never judged.
   --case NAME[,NAME...]  only these cases
   --list                 the cases and what each one does
   --json                 the results as JSON on standard output
+  --quiet                no progress bar (drawn on standard error only when that is
+                         a terminal, after about a second of work)
 
 Exit: 0 every row within its bound (or refused as expected), 1 otherwise, 2 bad input.
 )";
@@ -178,7 +181,8 @@ nlohmann::json to_json(const StressResult& r) {
 } // namespace
 
 int stress_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& /*err*/) {
-    const Arguments a = parse_arguments(args, {"--case"}, {"--help", "--json", "--list"});
+    const Arguments a =
+        parse_arguments(args, {"--case"}, {"--help", "--json", "--list", "--quiet"});
     if (a.has_flag("--help")) {
         out << stress_help;
         return exit_ok;
@@ -215,11 +219,20 @@ int stress_verb(const std::vector<std::string>& args, std::ostream& out, std::os
         write_header(out);
     }
     std::vector<StressResult> results;
-    for (const StressCase& c : cases) {
-        results.push_back(run_stress_case(c));
-        if (!json) {
-            write_case(results.back(), out);
-            out.flush(); // a row as soon as its case is done: the matrix takes seconds
+    {
+        Progress progress("stress", progress_wanted(a.has_flag("--quiet")));
+        progress.set_total(cases.size(), "cases");
+        for (const StressCase& c : cases) {
+            progress.set_item(c.name);
+            results.push_back(run_stress_case(c));
+            progress.advance();
+            if (!json) {
+                // a row as soon as its case is done: the matrix takes seconds
+                progress.without_bar([&] {
+                    write_case(results.back(), out);
+                    out.flush();
+                });
+            }
         }
     }
     const double total =
