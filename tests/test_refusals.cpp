@@ -67,6 +67,17 @@ TEST_CASE("box2d refuses a 1e39 kg ball with a sentence instead of aborting", "[
     CHECK(run.exit_code == 0);
 }
 
+TEST_CASE("box2d refuses the issue's scene as given, with no observables", "[refusals]") {
+    const ScratchDir tmp;
+    const fs::path scene = tmp.dir / "m.json";
+    write_text(
+        scene,
+        R"({"schema":"impulse/scene@1","name":"m","dt":0.01,"duration":0.5,"bodies":[{"name":"ground","static":true,"shape":{"box":[5,0.5]},"position":[0,-0.5]},{"name":"ball","shape":{"circle":0.5},"mass":1e39,"position":[0,1]}]})");
+    const ToolOutcome o = run_tool({"box2d", scene.string()});
+    require_one_sentence(o);
+    CHECK(o.err.rfind(scene.string() + ": bodies[1].mass: ", 0) == 0);
+}
+
 TEST_CASE("sweep refuses a scene Box2D cannot represent before any point runs", "[refusals]") {
     const ScratchDir tmp;
     const fs::path scene = tmp.dir / "m.json";

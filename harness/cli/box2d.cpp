@@ -11,6 +11,7 @@
 #include "progress.h"
 #include "run.h"
 #include "simulator.h"
+#include "single_precision.h"
 #include "tunnelling.h"
 
 #include <algorithm>
@@ -170,9 +171,6 @@ Comparison compare_scene(const std::string& path, const Options& options) {
     c.file = scene.file;
     c.warnings = scene.warnings;
     c.scene_integrator = integrator_name(scene.solver.integrator);
-    if (scene.box2d.observables.empty()) {
-        return c;
-    }
     // --dt is the step of both runs; the integrator is the impulse engine's only.
     Overrides overrides;
     overrides.dt = options.dt;
@@ -183,6 +181,13 @@ Comparison compare_scene(const std::string& path, const Options& options) {
         options.velocity_iterations.value_or(settings.velocity_iterations);
     settings.position_iterations =
         options.position_iterations.value_or(settings.position_iterations);
+    // A scene Box2D cannot represent is refused even when it names nothing
+    // to compare: asked to run it in Box2D, the answer is that it cannot.
+    require_single_precision(box2d_scene, "Box2D",
+                             box2d_scene.dt / static_cast<double>(settings.substeps));
+    if (scene.box2d.observables.empty()) {
+        return c;
+    }
     if (!options.scene_integrator) {
         overrides.integrator = Integrator::symplectic_euler;
     }
