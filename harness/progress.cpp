@@ -15,6 +15,8 @@ namespace {
 // shown: with check -j N the latest writer wins, which only moves the bar.
 std::atomic<double> simulated_t{0.0};
 std::atomic<double> simulated_duration{0.0};
+std::atomic<std::size_t> drawn{0};
+std::atomic<std::size_t> drawn_total{0};
 
 double now_seconds() {
     using clock = std::chrono::steady_clock;
@@ -71,12 +73,18 @@ void note_simulated_time(double t, double duration) {
     simulated_duration.store(duration, std::memory_order_relaxed);
 }
 
+void note_drawn(std::size_t done, std::size_t total) {
+    drawn.store(done, std::memory_order_relaxed);
+    drawn_total.store(total, std::memory_order_relaxed);
+}
+
 bool progress_wanted(bool quiet) {
     return !quiet && ::isatty(STDERR_FILENO) == 1;
 }
 
 Progress::Progress(std::string verb, bool enabled) : verb_(std::move(verb)), enabled_(enabled) {
     note_simulated_time(0.0, 0.0);
+    note_drawn(0, 0);
     if (enabled_) {
         started_ = now_seconds();
         thread_ = std::thread([this] { redraw_loop(); });
@@ -130,6 +138,12 @@ std::string Progress::line(const std::string& item) const {
         std::snprintf(sim, sizeof sim, " t %.3g/%.3g s", t, duration);
         text += sim;
     }
+    // render: after the run (if any), the drawing of each body's path.
+    if (const std::size_t paths = drawn_total.load(std::memory_order_relaxed); paths > 0) {
+        const std::size_t done_paths = std::min(drawn.load(std::memory_order_relaxed), paths);
+        text += " drawn " + std::to_string(done_paths) + "/" + std::to_string(paths) + " paths";
+        fraction = static_cast<double>(done_paths) / static_cast<double>(paths);
+    }
     const double elapsed = now_seconds() - started_;
     text += " " + bar(fraction) + " " + seconds_text(elapsed);
     if (fraction > 0.0 && fraction < 1.0) {
@@ -147,7 +161,6 @@ void Progress::erase_locked() {
 
 void Progress::redraw_loop() {
     const double delay = delay_seconds();
-    bool ever_drawn = false;
     std::unique_lock<std::mutex> lock(mutex_);
     while (!stop_) {
         // Redrawn five times a second once the delay has passed.
@@ -160,12 +173,11 @@ void Progress::redraw_loop() {
         // \r back to the start, \x1b[K clears what a longer line left.
         write_stderr("\r" + line(item_) + "\x1b[K");
         drawn_ = true;
-        ever_drawn = true;
     }
-    // With no delay (IMPULSE_PROGRESS_DELAY_MS=0) the bar is drawn at least
-    // once, at the latest as the work ends, so a test sees it however fast
-    // the work was.
-    if (!ever_drawn && delay == 0.0) {
+    // With no delay (IMPULSE_PROGRESS_DELAY_MS=0) the bar is drawn once more
+    // as the work ends, with the final state, so a test sees it however fast
+    // or slow the work was.
+    if (delay == 0.0) {
         write_stderr("\r" + line(item_) + "\x1b[K");
         drawn_ = true;
     }

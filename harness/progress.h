@@ -23,6 +23,9 @@ namespace impulse::harness {
 // duration. Relaxed atomic stores; nothing is drawn from here.
 void note_simulated_time(double t, double duration);
 
+// render calls this as it draws each body's path: how many of how many.
+void note_drawn(std::size_t done, std::size_t total);
+
 // true when a bar would be drawn: standard error is a terminal and not `quiet`.
 bool progress_wanted(bool quiet);
 

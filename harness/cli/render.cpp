@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
 
 namespace impulse::harness::cli {
@@ -91,13 +92,19 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
         read_file(input, max_trajectory_bytes, "a trajectory of that size is too large to draw");
     const std::string schema = schema_of(text, input);
 
+    // Erased (reset) before anything is written.
+    std::optional<Progress> progress;
+    progress.emplace("render", progress_wanted(a.has_flag("--quiet")));
     std::string svg;
     if (starts_with(schema, "impulse/scene@")) {
         const Scene scene = load_scene(input);
-        for (const std::string& warning : scene.warnings) {
-            err << "warning: " << warning << "\n";
-        }
-        const Progress progress("render " + scene.name, progress_wanted(a.has_flag("--quiet")));
+        progress->without_bar([&] {
+            for (const std::string& warning : scene.warnings) {
+                err << "warning: " << warning << "\n";
+            }
+            err.flush();
+        });
+        progress->set_item(scene.name);
         svg = render_svg(scene, run_scene(scene));
     } else if (schema.empty() || starts_with(schema, "impulse/trajectory@")) {
         // An empty schema here means the text is not JSON: the trajectory
@@ -124,7 +131,10 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
             }
         }
         if (!why_not.empty()) {
-            err << "note: " << why_not << "; drawing paths, contact points and normals only\n";
+            progress->without_bar([&] {
+                err << "note: " << why_not << "; drawing paths, contact points and normals only\n"
+                    << std::flush;
+            });
             svg = render_svg(trajectory);
         }
     } else {
@@ -133,6 +143,7 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
                              "\") or a trajectory (\"" + trajectory_schema + "\")");
     }
 
+    progress.reset();
     if (const auto path = a.option("--out")) {
         write_file_atomically(*path, svg);
     } else {
