@@ -168,6 +168,27 @@ std::string sweep_family(const SweepPoint& point) {
            toi_method_name(point.toi) + (point.ccd ? "+ccd" : "");
 }
 
+namespace {
+
+// What Box2D cannot represent is the scene's error, up front, not a failed
+// point (nor Box2D's abort).
+void require_box2d_can_run(const Scene& scene, const SweepConfig& config) {
+#ifdef IMPULSE_WITH_BOX2D
+    if (config.box2d) {
+        for (const double dt : config.dts) {
+            for (const int substeps : config.box2d_substeps) {
+                require_single_precision(scene, "Box2D", dt / static_cast<double>(substeps));
+            }
+        }
+    }
+#else
+    (void)scene;
+    (void)config;
+#endif
+}
+
+} // namespace
+
 SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
                       const SweepProgress& progress) {
     if (config.dts.empty()) {
@@ -240,17 +261,7 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
         o.dt = dt;
         (void)with_overrides(scene, o);
     }
-#ifdef IMPULSE_WITH_BOX2D
-    // What Box2D cannot represent is the scene's error, up front, not a
-    // failed point (nor Box2D's abort).
-    if (config.box2d) {
-        for (const double dt : config.dts) {
-            for (const int substeps : config.box2d_substeps) {
-                require_single_precision(scene, "Box2D", dt / static_cast<double>(substeps));
-            }
-        }
-    }
-#endif
+    require_box2d_can_run(scene, config);
 
     // What the error is measured against.
     Scene exact_only = scene;

@@ -99,6 +99,20 @@ std::vector<std::string> normalise_jobs(const std::vector<std::string>& args) {
     return out;
 }
 
+// check_scenes with the progress bar (scenes done of all, the one running),
+// erased before the table is printed.
+std::vector<SceneCheck> check_with_progress(const GateRoot& root,
+                                            const std::vector<std::string>& paths,
+                                            CheckOptions options, bool quiet) {
+    Progress progress("check", progress_wanted(quiet));
+    progress.set_total(paths.size(), "scenes");
+    options.on_start = [&progress](const std::string& path) {
+        progress.set_item(std::filesystem::path(path).stem().string());
+    };
+    options.on_done = [&progress] { progress.advance(); };
+    return check_scenes(root, paths, options);
+}
+
 } // namespace
 
 int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostream& err) {
@@ -134,16 +148,8 @@ int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostr
     out << "check: " << paths.size() << " scene" << (paths.size() == 1 ? "" : "s") << ", "
         << (options.tolerance_mode ? "within tolerances" : "exact") << (ci ? ", CI mode" : "")
         << "\n";
-    std::vector<SceneCheck> checks;
-    {
-        Progress progress("check", progress_wanted(a.has_flag("--quiet")));
-        progress.set_total(paths.size(), "scenes");
-        options.on_start = [&progress](const std::string& path) {
-            progress.set_item(std::filesystem::path(path).stem().string());
-        };
-        options.on_done = [&progress] { progress.advance(); };
-        checks = check_scenes(root, paths, options);
-    }
+    std::vector<SceneCheck> checks =
+        check_with_progress(root, paths, options, a.has_flag("--quiet"));
 
     if (all) {
         for (const std::string& golden : unreferenced_goldens(root)) {

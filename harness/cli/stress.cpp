@@ -178,6 +178,27 @@ nlohmann::json to_json(const StressResult& r) {
             {"rows", std::move(rows)}};
 }
 
+// Runs the cases in order, each row printed as soon as its case is done
+// (the matrix takes seconds), with the progress bar between rows.
+std::vector<StressResult> run_cases(const std::vector<StressCase>& cases, bool json, bool quiet,
+                                    std::ostream& out) {
+    std::vector<StressResult> results;
+    Progress progress("stress", progress_wanted(quiet));
+    progress.set_total(cases.size(), "cases");
+    for (const StressCase& c : cases) {
+        progress.set_item(c.name);
+        results.push_back(run_stress_case(c));
+        progress.advance();
+        if (!json) {
+            progress.without_bar([&] {
+                write_case(results.back(), out);
+                out.flush();
+            });
+        }
+    }
+    return results;
+}
+
 } // namespace
 
 int stress_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& /*err*/) {
@@ -218,23 +239,7 @@ int stress_verb(const std::vector<std::string>& args, std::ostream& out, std::os
             << " cases; the worst value of each invariant over every frame against its bound\n\n";
         write_header(out);
     }
-    std::vector<StressResult> results;
-    {
-        Progress progress("stress", progress_wanted(a.has_flag("--quiet")));
-        progress.set_total(cases.size(), "cases");
-        for (const StressCase& c : cases) {
-            progress.set_item(c.name);
-            results.push_back(run_stress_case(c));
-            progress.advance();
-            if (!json) {
-                // a row as soon as its case is done: the matrix takes seconds
-                progress.without_bar([&] {
-                    write_case(results.back(), out);
-                    out.flush();
-                });
-            }
-        }
-    }
+    const std::vector<StressResult> results = run_cases(cases, json, a.has_flag("--quiet"), out);
     const double total =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     const auto failed = static_cast<std::size_t>(std::count_if(
