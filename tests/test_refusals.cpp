@@ -206,6 +206,21 @@ TEST_CASE("an expectation whose quantity overflows to infinity fails", "[refusal
     }
 }
 
+TEST_CASE("an event expectation whose tolerance overflows fails", "[refusals]") {
+    // Whatever impulse the landing takes, the allowance 1.7e308 + 1.7e308 x
+    // |1| (the expected value is the scale) overflows double's 1.8e308 to
+    // inf, and the comparison cannot be computed.
+    const ScratchDir tmp;
+    const fs::path scene = tmp.dir / "m.json";
+    write_text(
+        scene,
+        R"({"schema":"impulse/scene@1","name":"m","dt":0.01,"duration":0.5,"solver":{"integrator":"verlet"},"bodies":[{"name":"ground","static":true,"shape":{"box":[5,0.5]},"position":[0,-0.5]},{"name":"ball","shape":{"circle":0.5},"mass":1,"position":[0,1]}],"expectations":[{"kind":"event","index":0,"impulse":1,"atol":1.7e308,"rtol":1.7e308}]})");
+    const ToolOutcome o = run_tool({"run", scene.string(), "--out", (tmp.dir / "t").string()});
+    INFO(o.err);
+    CHECK(o.exit_code == 1);
+    CHECK(o.err.find("not finite") != std::string::npos);
+}
+
 TEST_CASE("bless refuses a scene whose expectation overflows, and writes no golden", "[refusals]") {
     const ScratchDir root;
     write_text(
