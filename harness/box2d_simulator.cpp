@@ -8,6 +8,7 @@
 
 #include "input_error.h"
 #include "number_format.h"
+#include "single_precision.h"
 
 #include <box2d/box2d.h>
 #include <cmath>
@@ -146,6 +147,15 @@ struct Box2dShape {
 Box2dShape box2d_shape(const SceneBody& spec, const Scene& scene, std::size_t index) {
     Box2dShape out;
     if (spec.shape.type == ShapeType::circle) {
+        // Box2D resolves contacts to b2_linearSlop (it lets bodies overlap by
+        // that much): a smaller circle would sink into what it lands on.
+        const double min_radius = static_cast<double>(b2_linearSlop);
+        if (spec.shape.radius < min_radius) {
+            throw InputError(scene.file, shape_path(index),
+                             "too small for Box2D: its radius " + readable(spec.shape.radius) +
+                                 " m is under b2_linearSlop = " + readable(min_radius) +
+                                 " m, the overlap Box2D tolerates; make the circle larger");
+        }
         // Circles carry no skin in Box2D: their radius is the surface.
         out.circle.m_radius = static_cast<float>(spec.shape.radius);
         return out;
@@ -451,6 +461,9 @@ std::string box2d_version() {
 
 std::unique_ptr<Simulator> make_box2d_simulator(const Scene& scene,
                                                 std::vector<std::string>& warnings) {
+    // Before any float conversion: what single precision cannot hold makes
+    // Box2D assert (m_I > 0 for a mass of 1e39 kg) or compute nonsense.
+    require_single_precision(scene, "Box2D", scene.dt / static_cast<double>(scene.box2d.substeps));
     const std::vector<Box2dShape> shapes = box2d_shapes(scene);
     warn_about_clamps(scene, warnings);
     return std::make_unique<Box2dSimulator>(scene, shapes);

@@ -17,8 +17,9 @@ namespace impulse::harness {
 std::string box2d_version();
 
 // Throws InputError naming the body for a shape Box2D cannot take (a polygon
-// of more than 8 vertices). Appends to `warnings` one sentence per body whose
-// speed would hit Box2D's per-step translation or rotation clamp.
+// of more than 8 vertices, a circle under b2_linearSlop) and for any quantity
+// single precision cannot hold (single_precision.h). Appends to `warnings` one sentence per body
+// whose speed would hit Box2D's per-step translation or rotation clamp.
 std::unique_ptr<Simulator> make_box2d_simulator(const Scene& scene,
                                                 std::vector<std::string>& warnings);
 

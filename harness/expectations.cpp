@@ -66,7 +66,15 @@ class Checks {
             r.detail = "the exact formula gives " + number(expected.value) +
                        " for this scene, so it cannot be checked";
         } else if (!std::isfinite(actual)) {
-            r.detail = "the run gave " + number(actual);
+            r.passed = false;
+            r.detail = "the run gave " + number(actual) + ", which is not finite";
+        } else if (!std::isfinite(off) || !std::isfinite(allowed)) {
+            // An overflowed difference or tolerance (a scale of inf) would let
+            // anything pass: what cannot be computed fails.
+            r.passed = false;
+            r.detail = "not finite: off by " + number(off) + ", allowed " + number(allowed) +
+                       " (atol " + number(expectation_.atol) + " + rtol " +
+                       number(expectation_.rtol) + " x " + number(expected.scale) + ")";
         } else if (!r.passed) {
             r.detail = "off by " + number(off) + ", more than the " + number(allowed) +
                        " allowed (atol " + number(expectation_.atol) + " + rtol " +
@@ -76,13 +84,21 @@ class Checks {
     }
 
     // A check judged by its caller; `detail` is kept only when it failed.
+    // `allowed` is the tolerance the caller judged with. A non-finite
+    // expected, actual or allowed value fails whatever the caller found:
+    // inf <= inf + inf is true, and must not pass.
     void judged(const std::string& what, bool passed, double expected, double actual,
-                const std::string& detail) {
+                const std::string& detail, double allowed = 0.0) {
         ExpectationResult r = start(what);
-        r.passed = passed;
+        const bool finite =
+            std::isfinite(expected) && std::isfinite(actual) && std::isfinite(allowed);
+        r.passed = passed && finite;
         r.expected = finite_or_zero(expected);
         r.actual = finite_or_zero(actual);
-        if (!passed) {
+        if (!finite) {
+            r.detail = "not finite: expected " + number(expected) + ", got " + number(actual) +
+                       ", allowed " + number(allowed) + "; " + detail;
+        } else if (!passed) {
             r.detail = detail;
         }
         out_.push_back(std::move(r));
@@ -566,7 +582,8 @@ void check_energy_non_increasing(const Scene& scene, const Trajectory& trajector
                   "the energy rose by " + number(after - before) +
                       " J in the step to t = " + number(t) + " s, more than the " +
                       number(allowed) + " allowed (atol " + number(x.atol) + " + rtol " +
-                      number(x.rtol) + " x " + number(initial.energy_scale) + ")");
+                      number(x.rtol) + " x " + number(initial.energy_scale) + ")",
+                  allowed);
 }
 
 // ---------------------------------------------------------------- literal values

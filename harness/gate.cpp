@@ -355,8 +355,17 @@ SceneCheck check_scene(const GateRoot& root, const std::string& scene_path,
 
 std::vector<SceneCheck> check_scenes(const GateRoot& root, const std::vector<std::string>& paths,
                                      const CheckOptions& options) {
-    return check_each(paths, options.jobs,
-                      [&](const std::string& path) { return check_scene(root, path, options); });
+    // on_start and on_done may run on any worker thread (the progress bar's are thread-safe).
+    return check_each(paths, options.jobs, [&](const std::string& path) {
+        if (options.on_start) {
+            options.on_start(path);
+        }
+        SceneCheck result = check_scene(root, path, options);
+        if (options.on_done) {
+            options.on_done();
+        }
+        return result;
+    });
 }
 
 Blessing bless_scene(const GateRoot& root, const std::string& scene_path) {

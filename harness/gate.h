@@ -4,6 +4,7 @@
 
 #include "report.h"
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -45,6 +46,10 @@ struct CheckOptions {
     // Command-line tolerance specs (--atol/--rtol/--ulp), applied over each scene's own.
     std::optional<std::string> atol, rtol, ulp;
     int jobs = 1;
+    // Called (from any worker thread) when a scene starts and when it is done;
+    // for a progress bar, never for results.
+    std::function<void(const std::string& scene_path)> on_start;
+    std::function<void()> on_done;
 };
 
 SceneCheck check_scene(const GateRoot& root, const std::string& scene_path,

@@ -1,6 +1,7 @@
 // The impulse engine behind the harness's Simulator interface.
 #include "input_error.h"
 #include "number_format.h"
+#include "progress.h"
 #include "simulator.h"
 #include "world.h"
 
@@ -209,6 +210,7 @@ Trajectory record(Simulator& simulator, const Scene& scene) {
             trajectory.events.push_back(std::move(e));
         }
         trajectory.frames.push_back(frame_at(static_cast<double>(k + 1) * scene.dt));
+        note_simulated_time(static_cast<double>(k + 1) * scene.dt, scene.duration);
     }
     return trajectory;
 }

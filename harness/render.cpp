@@ -9,6 +9,7 @@
 // drawn as paths), so several pictures can be inlined in one HTML page.
 #include "render.h"
 
+#include "progress.h"
 #include "rotation.h"
 #include "shape.h"
 #include "vec2.h"
@@ -831,11 +832,13 @@ std::string render_motion(const Scene* scene, const Trajectory& trajectory) {
                          trajectory.frames[keys[i]][0]);
         }
     }
-    for (const Track& track : tracks) {
+    for (std::size_t k = 0; k < tracks.size(); ++k) {
+        const Track& track = tracks[k];
         body += "<polyline class=\"path\"" + attr("data-body", esc(track.name)) +
                 attr("points", path_points(view, trajectory, track)) +
                 attr("stroke", track.colour) +
                 " stroke-width=\"2\" fill=\"none\" stroke-linejoin=\"round\"/>\n";
+        note_drawn(k + 1, tracks.size()); // for the progress bar only
     }
     draw_events(body, view, trajectory.events, false, "");
     draw_plot_border(body, view);

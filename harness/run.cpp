@@ -3,6 +3,7 @@
 #include "input_error.h"
 #include "number_format.h"
 #include "simulator.h"
+#include "tunnelling.h"
 
 namespace impulse::harness {
 
@@ -33,6 +34,7 @@ Scene with_overrides(Scene scene, const Overrides& overrides) {
 
 Trajectory run_scene(const Scene& scene, const Overrides& overrides) {
     const Scene effective = with_overrides(scene, overrides);
+    refuse_tunnelling(effective); // a tunnel would pass unseen: refused, not run
     std::unique_ptr<Simulator> simulator = make_impulse_simulator(effective);
     Trajectory trajectory = record(*simulator, effective);
     std::string used;

@@ -1,10 +1,11 @@
-// The stress matrix (stress.h): the up-front tunnelling refusal, the
-// invariant checkers with the bound of each and why, and the cases.
+// The stress matrix (stress.h): the invariant checkers with the bound of each and why, and the
+// cases.
 #include "stress.h"
 
 #include "exact_answers.h"
 #include "input_error.h"
 #include "manifold.h"
+#include "progress.h"
 #include "simulator.h"
 
 #include <algorithm>
@@ -38,25 +39,6 @@ std::string at_time(double t) {
     return "t = " + short_number(t) + " s";
 }
 
-// How far a body's surface can move by turning alone, per rad/s: its farthest
-// vertex. A circle turning moves no surface, and the engine's circle tests
-// ignore its angle.
-double turning_reach(const Shape& shape) {
-    if (shape.type == ShapeType::circle) {
-        return 0.0;
-    }
-    double reach = 0.0;
-    for (int i = 0; i < shape.polygon.count; ++i) {
-        reach = std::max(reach, length(shape.polygon.vertices[static_cast<std::size_t>(i)]));
-    }
-    return reach;
-}
-
-std::string body_path(const Scene& scene, std::size_t index) {
-    return index < scene.listed_bodies ? "bodies[" + std::to_string(index) + "]"
-                                       : std::string("gas");
-}
-
 // The spacing of doubles at x: what one rounding of a coordinate there can be off by, twice.
 double ulp_at(double x) {
     const double a = std::abs(x);
@@ -64,80 +46,6 @@ double ulp_at(double x) {
 }
 
 } // namespace
-
-// ---------------------------------------------------------------- tunnelling, refused up front
-
-double inradius(const Shape& shape) {
-    if (shape.type == ShapeType::circle) {
-        return shape.radius;
-    }
-    // The polygon is the intersection of its edges' half-planes, each
-    // dot(n_i, v_i) from the centre (shapes are centred on it: scene.h).
-    double r = infinity;
-    for (int i = 0; i < shape.polygon.count; ++i) {
-        const auto k = static_cast<std::size_t>(i);
-        r = std::min(r, dot(shape.polygon.normals[k], shape.polygon.vertices[k]));
-    }
-    return r;
-}
-
-std::optional<TunnellingRefusal> tunnelling_refusal(const Scene& scene) {
-    if (scene.solver.ccd) {
-        return std::nullopt;
-    }
-    const std::size_t n = scene.bodies.size();
-    std::vector<double> radius(n);
-    std::vector<double> turning(n); // |omega| R: how fast turning moves the surface
-    double fastest = 0.0;
-    double thinnest = infinity;
-    for (std::size_t i = 0; i < n; ++i) {
-        const SceneBody& body = scene.bodies[i];
-        radius[i] = inradius(body.shape);
-        turning[i] =
-            body.is_static ? 0.0 : std::abs(body.angular_velocity) * turning_reach(body.shape);
-        fastest = std::max(fastest, length(body.velocity) + turning[i]);
-        thinnest = std::min(thinnest, radius[i]);
-    }
-    // No pair closes faster than twice the fastest body or is thinner than
-    // twice the thinnest: most scenes (a gas of 10^4 bodies among them) are
-    // cleared here without looking at pairs.
-    if (2.0 * fastest * scene.dt < 4.0 * thinnest) {
-        return std::nullopt;
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-        for (std::size_t k = i + 1; k < n; ++k) {
-            const SceneBody& a = scene.bodies[i];
-            const SceneBody& b = scene.bodies[k];
-            if (a.is_static && b.is_static) {
-                continue;
-            }
-            const double closing = length(a.velocity - b.velocity) + turning[i] + turning[k];
-            const double thickness = 2.0 * (radius[i] + radius[k]);
-            if (closing * scene.dt < thickness) {
-                continue;
-            }
-            const bool a_faster =
-                length(a.velocity) + turning[i] >= length(b.velocity) + turning[k];
-            const std::string cure =
-                scene.solver.stepping == Stepping::local
-                    ? "use dt below " + short_number(thickness / closing) +
-                          " s (ccd needs \"stepping\": \"world\")"
-                    : "set \"ccd\": true in the solver block, or use dt below " +
-                          short_number(thickness / closing) + " s";
-            return TunnellingRefusal{
-                body_path(scene, a_faster ? i : k),
-                quoted(a_faster ? a.name : b.name) + " and " + quoted(a_faster ? b.name : a.name) +
-                    " close at up to " + short_number(closing) +
-                    " m/s at t = 0: " + short_number(closing * scene.dt) +
-                    " m per step of dt = " + short_number(scene.dt) +
-                    " s, at least their combined thickness of " + short_number(thickness) +
-                    " m, so one could pass through the other between two steps without either "
-                    "end of the step seeing them overlap (tunnelling); " +
-                    cure};
-        }
-    }
-    return std::nullopt;
-}
 
 // ---------------------------------------------------------------- invariants
 
@@ -525,6 +433,7 @@ StressResult run_stress_case(const StressCase& stress_case) {
             }
             read_states();
             monitor.observe(static_cast<double>(k + 1) * scene.dt, states);
+            note_simulated_time(static_cast<double>(k + 1) * scene.dt, scene.duration);
             ++result.steps;
         }
     } catch (const InputError& error) {

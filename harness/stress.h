@@ -6,46 +6,20 @@
 // every frame and its worst value kept. `impulse stress` prints the table
 // (harness/cli/stress.cpp); CTest runs it (stress.matrix).
 //
-// Also the up-front refusal of a scene that could tunnel without ccd, applied
-// to every case before it runs. Not to every run of the tool: impulse sweep
-// --ccd off,on runs the bullet through its wall on purpose, to measure what
-// catching tunnelling costs.
+// Every case is first put to the up-front tunnelling refusal (tunnelling.h),
+// and a case that would tunnel must be refused there.
 #pragma once
 
 #include "body.h"
 #include "scene.h"
 #include "trajectory.h"
+#include "tunnelling.h"
 
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace impulse::harness {
-
-// ---------------------------------------------------------------- tunnelling, refused up front
-
-// Without ccd a pair is tested only at the ends of a step. Over a step the
-// centre of a body moves at most (|v| + |omega| R) dt relative to any point of
-// another (R: its farthest vertex; 0 for a circle, whose turning moves no
-// surface). Each body contains the disc of its inradius r about its centre
-// (a convex shape contains the disc of its smallest centre-to-edge distance),
-// so a straight path through the other body's middle stays inside the pair's
-// overlap for a length of at least 2 (r_a + r_b): the two thicknesses. A step
-// shorter than that cannot jump the overlap, so the end of some step sees it.
-// A scene whose bodies close faster than that at t = 0 is refused: the
-// bullet's 33 m per step against a 0.02 m wall. Only the motion at t = 0 is
-// bounded: speed that gravity or collisions add later is not (ccd is the cure).
-struct TunnellingRefusal {
-    std::string path;    // "bodies[1]" (or "gas") of the faster body of the pair
-    std::string message; // one sentence naming both bodies, the speeds and the cure
-};
-
-// Empty when solver.ccd is on or no pair closes faster than its thicknesses per step.
-std::optional<TunnellingRefusal> tunnelling_refusal(const Scene& scene);
-
-// r of the disc about the centre that the shape contains: the radius of a
-// circle, a polygon's smallest distance from its centre to an edge's line.
-double inradius(const Shape& shape);
 
 // ---------------------------------------------------------------- invariants
 

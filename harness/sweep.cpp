@@ -5,6 +5,8 @@
 #include "number_format.h"
 #include "run.h"
 #include "simulator.h"
+#include "single_precision.h"
+#include "tunnelling.h"
 #ifdef IMPULSE_WITH_BOX2D
 #include "box2d_simulator.h"
 #endif
@@ -166,6 +168,27 @@ std::string sweep_family(const SweepPoint& point) {
            toi_method_name(point.toi) + (point.ccd ? "+ccd" : "");
 }
 
+namespace {
+
+// What Box2D cannot represent is the scene's error, up front, not a failed
+// point (nor Box2D's abort).
+void require_box2d_can_run(const Scene& scene, const SweepConfig& config) {
+#ifdef IMPULSE_WITH_BOX2D
+    if (config.box2d) {
+        for (const double dt : config.dts) {
+            for (const int substeps : config.box2d_substeps) {
+                require_single_precision(scene, "Box2D", dt / static_cast<double>(substeps));
+            }
+        }
+    }
+#else
+    (void)scene;
+    (void)config;
+#endif
+}
+
+} // namespace
+
 SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
                       const SweepProgress& progress) {
     if (config.dts.empty()) {
@@ -238,6 +261,7 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
         o.dt = dt;
         (void)with_overrides(scene, o);
     }
+    require_box2d_can_run(scene, config);
 
     // What the error is measured against.
     Scene exact_only = scene;
@@ -291,6 +315,27 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
     }
     mark_fronts(result.points);
     return result;
+}
+
+std::vector<std::string> tunnelling_warnings(const Scene& scene, const SweepConfig& config) {
+    const bool ccd_off = config.ccd.empty() ? !scene.solver.ccd
+                                            : std::find(config.ccd.begin(), config.ccd.end(),
+                                                        false) != config.ccd.end();
+    std::vector<std::string> warnings;
+    if (!ccd_off) {
+        return warnings;
+    }
+    for (const double dt : config.dts) {
+        Overrides o;
+        o.dt = dt;
+        Scene s = with_overrides(scene, o);
+        s.solver.ccd = false;
+        if (const std::optional<TunnellingRefusal> r = tunnelling_refusal(s)) {
+            warnings.push_back(scene.file + ": the points at dt " + format_double(dt) +
+                               ", ccd off can tunnel: " + r->path + ": " + r->message);
+        }
+    }
+    return warnings;
 }
 
 std::vector<std::size_t> pareto_front(const std::vector<std::pair<double, double>>& cost_error) {

@@ -30,6 +30,11 @@ struct SweepConfig {
     int repeats = 5;                                   // timed runs per grid point
 };
 
+// One warning per time step of the grid run with ccd off at which the scene
+// could tunnel (tunnelling.h): the sweep runs such points on purpose (the
+// cost of ccd is what `--ccd off,on` measures), so it warns instead of refusing.
+std::vector<std::string> tunnelling_warnings(const Scene& scene, const SweepConfig& config);
+
 // The defaults: dt in {1/30, ..., 1/960} (those not longer than the scene's
 // duration), all four integrators, both time-of-impact methods, toi_tolerance
 // {1e-6, 1e-9, 1e-12}, ccd as the scene sets it; Box2D over the same dts x substeps {1, 4} x

@@ -2,6 +2,7 @@
 #include "cli.h"
 #include "gate.h"
 #include "input_error.h"
+#include "progress.h"
 
 #include <cstdlib>
 #include <filesystem>
@@ -21,16 +22,41 @@ new, changed (and what moved, by how much), unchanged and removed.
 
   --root DIR   where harness/scenes/ and goldens/ are (default: .)
   --prune      delete goldens whose scene no longer exists
+  --quiet      no progress bar (drawn on standard error only when that is a
+               terminal, after about a second of work)
 
 Refuses to run in CI mode (CI set to anything but empty, 0 or false): CI never
 writes goldens. Exit: 0 done, 1 a scene was refused, 2 bad input or a golden
 that could not be written.
 )";
 
+// One line per golden (and what moved, for a changed one), flushed so the
+// progress bar can be drawn after it.
+void report(const Blessing& b, std::ostream& out) {
+    switch (b.outcome) {
+    case Blessing::Outcome::created:
+        out << "  new        " << b.name << " -> " << b.golden_file << "\n";
+        break;
+    case Blessing::Outcome::changed:
+        out << "  changed    " << b.name << " -> " << b.golden_file << "\n" << b.summary;
+        break;
+    case Blessing::Outcome::unchanged:
+        out << "  unchanged  " << b.name << "\n";
+        break;
+    case Blessing::Outcome::refused:
+        out << "  REFUSED    " << b.name << ": " << b.summary;
+        break;
+    case Blessing::Outcome::unwritten:
+        out << "  NOT WRITTEN " << b.name << ": could not write the golden\n";
+        break;
+    }
+    out.flush();
+}
+
 } // namespace
 
 int bless_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-    const Arguments a = parse_arguments(args, {"--root"}, {"--help", "--prune"});
+    const Arguments a = parse_arguments(args, {"--root"}, {"--help", "--prune", "--quiet"});
     if (a.has_flag("--help")) {
         out << bless_help;
         return exit_ok;
@@ -46,35 +72,38 @@ int bless_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
 
     int created = 0, changed = 0, unchanged = 0, refused = 0, removed = 0, broken = 0;
     int unwritten = 0; // a scene that ran fine but whose golden could not be written
-    for (const std::string& path : paths) {
-        try {
-            const Blessing b = bless_scene(root, path);
-            switch (b.outcome) {
-            case Blessing::Outcome::created:
-                ++created;
-                out << "  new        " << b.name << " -> " << b.golden_file << "\n";
-                break;
-            case Blessing::Outcome::changed:
-                ++changed;
-                out << "  changed    " << b.name << " -> " << b.golden_file << "\n" << b.summary;
-                break;
-            case Blessing::Outcome::unchanged:
-                ++unchanged;
-                out << "  unchanged  " << b.name << "\n";
-                break;
-            case Blessing::Outcome::refused:
-                ++refused;
-                out << "  REFUSED    " << b.name << ": " << b.summary;
-                break;
-            case Blessing::Outcome::unwritten:
-                ++unwritten;
-                out << "  NOT WRITTEN " << b.name << ": could not write the golden\n";
-                err << b.summary << "\n";
-                break;
+    {                  // the bar lives while scenes run, and is erased before the summary
+        Progress progress("bless", progress_wanted(a.has_flag("--quiet")));
+        progress.set_total(paths.size(), "scenes");
+        for (const std::string& path : paths) {
+            progress.set_item(std::filesystem::path(path).stem().string());
+            try {
+                const Blessing b = bless_scene(root, path);
+                progress.advance();
+                progress.without_bar([&] { report(b, out); });
+                switch (b.outcome) {
+                case Blessing::Outcome::created:
+                    ++created;
+                    break;
+                case Blessing::Outcome::changed:
+                    ++changed;
+                    break;
+                case Blessing::Outcome::unchanged:
+                    ++unchanged;
+                    break;
+                case Blessing::Outcome::refused:
+                    ++refused;
+                    break;
+                case Blessing::Outcome::unwritten:
+                    ++unwritten;
+                    progress.without_bar([&] { err << b.summary << "\n" << std::flush; });
+                    break;
+                }
+            } catch (const InputError& e) {
+                ++broken;
+                progress.advance();
+                progress.without_bar([&] { err << e.what() << "\n" << std::flush; });
             }
-        } catch (const InputError& e) {
-            ++broken;
-            err << e.what() << "\n";
         }
     }
     for (const std::string& golden : unreferenced_goldens(root)) {

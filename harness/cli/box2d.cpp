@@ -8,8 +8,11 @@
 #include "gate.h"
 #include "input_error.h"
 #include "observables.h"
+#include "progress.h"
 #include "run.h"
 #include "simulator.h"
+#include "single_precision.h"
+#include "tunnelling.h"
 
 #include <algorithm>
 #include <cmath>
@@ -55,6 +58,8 @@ runs are compared up to its last complete step, and the output says so.
   --velocity-iterations N      Box2D's velocity iterations (default 8)
   --position-iterations N      Box2D's position iterations (default 3)
   --scene-integrator           run the impulse engine with the scene's own integrator
+  --quiet                      no progress bar (drawn on standard error only when that
+                               is a terminal, after about a second of work)
 
 Exit: 0 every observable within its tolerance, 1 one is not, 2 bad input (a
 broken scene, a bad option, a shape Box2D cannot take, a build without Box2D).
@@ -166,9 +171,6 @@ Comparison compare_scene(const std::string& path, const Options& options) {
     c.file = scene.file;
     c.warnings = scene.warnings;
     c.scene_integrator = integrator_name(scene.solver.integrator);
-    if (scene.box2d.observables.empty()) {
-        return c;
-    }
     // --dt is the step of both runs; the integrator is the impulse engine's only.
     Overrides overrides;
     overrides.dt = options.dt;
@@ -179,15 +181,25 @@ Comparison compare_scene(const std::string& path, const Options& options) {
         options.velocity_iterations.value_or(settings.velocity_iterations);
     settings.position_iterations =
         options.position_iterations.value_or(settings.position_iterations);
+    // A scene Box2D cannot represent is refused even when it names nothing
+    // to compare: asked to run it in Box2D, the answer is that it cannot.
+    require_single_precision(box2d_scene, "Box2D",
+                             box2d_scene.dt / static_cast<double>(settings.substeps));
+    if (scene.box2d.observables.empty()) {
+        return c;
+    }
     if (!options.scene_integrator) {
         overrides.integrator = Integrator::symplectic_euler;
     }
     const Scene impulse_scene = with_overrides(scene, overrides);
 
-    StoppingSimulator impulse_simulator(make_impulse_simulator(impulse_scene));
-    Trajectory impulse = record(impulse_simulator, impulse_scene);
+    // Both refusals come before either run: a scene that would tunnel
+    // unseen, and one Box2D cannot represent (single_precision.h).
     std::vector<std::string> warnings;
     const std::unique_ptr<Simulator> box2d_simulator = make_box2d_simulator(box2d_scene, warnings);
+    refuse_tunnelling(impulse_scene);
+    StoppingSimulator impulse_simulator(make_impulse_simulator(impulse_scene));
+    Trajectory impulse = record(impulse_simulator, impulse_scene);
     Trajectory box2d = record(*box2d_simulator, box2d_scene);
     if (const std::optional<double> end = impulse_simulator.stopped_at()) {
         truncate(impulse, *end);
@@ -388,7 +400,7 @@ int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
     const Arguments a = parse_arguments(
         args,
         {"--root", "--out", "--dt", "--substeps", "--velocity-iterations", "--position-iterations"},
-        {"--help", "--json", "--scene-integrator"});
+        {"--help", "--json", "--scene-integrator", "--quiet"});
     if (a.has_flag("--help")) {
         out << box2d_help;
         return exit_ok;
@@ -419,8 +431,14 @@ int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
     // Everything is computed before anything is written: a bad scene or a
     // shape Box2D cannot take is one sentence on stderr, with no half output.
     std::vector<Comparison> comparisons;
-    for (const std::string& path : paths) {
-        comparisons.push_back(compare_scene(path, options));
+    {
+        Progress progress("box2d", progress_wanted(a.has_flag("--quiet")));
+        progress.set_total(paths.size(), "scenes");
+        for (const std::string& path : paths) {
+            progress.set_item(std::filesystem::path(path).stem().string());
+            comparisons.push_back(compare_scene(path, options));
+            progress.advance();
+        }
     }
     for (const Comparison& c : comparisons) {
         for (const std::string& warning : c.warnings) {

@@ -4,6 +4,7 @@
 #include "gate.h"
 #include "input_error.h"
 #include "number_format.h"
+#include "progress.h"
 #include "tolerance.h"
 
 #include <algorithm>
@@ -40,6 +41,8 @@ golden matches.
   -j N, --jobs N    check N scenes at once (results identical to -j 1)
   --shard K/N       only the scenes of shard K of N (a scene's shard depends on
                     its name alone)
+  --quiet           no progress bar (it is drawn on standard error only when that
+                    is a terminal, after about a second of work)
 
 CI mode (CI set to anything but empty, 0 or false): a golden without a scene
 fails too. check never writes to goldens/.
@@ -147,13 +150,27 @@ void print_warnings(const std::vector<SceneCheck>& checks, std::ostream& err) {
     }
 }
 
+// check_scenes with the progress bar (scenes done of all, the one running),
+// erased before the table is printed.
+std::vector<SceneCheck> check_with_progress(const GateRoot& root,
+                                            const std::vector<std::string>& paths,
+                                            CheckOptions options, bool quiet) {
+    Progress progress("check", progress_wanted(quiet));
+    progress.set_total(paths.size(), "scenes");
+    options.on_start = [&progress](const std::string& path) {
+        progress.set_item(std::filesystem::path(path).stem().string());
+    };
+    options.on_done = [&progress] { progress.advance(); };
+    return check_scenes(root, paths, options);
+}
+
 } // namespace
 
 int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostream& err) {
     const Arguments a = parse_arguments(
         normalise_jobs(raw),
         {"--root", "--atol", "--rtol", "--ulp", "--junit", "--report", "--jobs", "--shard"},
-        {"--help", "--tolerance"});
+        {"--help", "--tolerance", "--quiet"});
     if (a.has_flag("--help")) {
         out << check_help;
         return exit_ok;
@@ -183,7 +200,8 @@ int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostr
     out << "check: " << paths.size() << " scene" << (paths.size() == 1 ? "" : "s") << ", "
         << (options.tolerance_mode ? "within tolerances" : "exact") << (ci ? ", CI mode" : "")
         << "\n";
-    std::vector<SceneCheck> checks = check_scenes(root, paths, options);
+    std::vector<SceneCheck> checks =
+        check_with_progress(root, paths, options, a.has_flag("--quiet"));
 
     if (all) {
         add_unreferenced_goldens(root, ci, checks, err);

@@ -4,11 +4,13 @@
 #include "atomic_file.h"
 #include "cli.h"
 #include "input_error.h"
+#include "progress.h"
 #include "run.h"
 
 #include <cstddef>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
 
 namespace impulse::harness::cli {
@@ -30,6 +32,8 @@ The file's "schema" decides what it is:
 
   --out FILE.svg   write the picture here (atomically) instead of standard output
   --root DIR       where harness/scenes/ is (default: the current directory)
+  --quiet          no progress bar (drawn on standard error only when that is a
+                   terminal, after about a second of work)
 )";
 
 // A trajectory of a long run is large; beyond this it is refused.
@@ -74,7 +78,7 @@ bool starts_with(const std::string& text, const std::string& prefix) {
 } // namespace
 
 int render_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-    const Arguments a = parse_arguments(args, {"--out", "--root"}, {"--help"});
+    const Arguments a = parse_arguments(args, {"--out", "--root"}, {"--help", "--quiet"});
     if (a.has_flag("--help")) {
         out << render_help;
         return exit_ok;
@@ -88,12 +92,19 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
         read_file(input, max_trajectory_bytes, "a trajectory of that size is too large to draw");
     const std::string schema = schema_of(text, input);
 
+    // Erased (reset) before anything is written.
+    std::optional<Progress> progress;
+    progress.emplace("render", progress_wanted(a.has_flag("--quiet")));
     std::string svg;
     if (starts_with(schema, "impulse/scene@")) {
         const Scene scene = load_scene(input);
-        for (const std::string& warning : scene.warnings) {
-            err << "warning: " << warning << "\n";
-        }
+        progress->without_bar([&] {
+            for (const std::string& warning : scene.warnings) {
+                err << "warning: " << warning << "\n";
+            }
+            err.flush();
+        });
+        progress->set_item(scene.name);
         svg = render_svg(scene, run_scene(scene));
     } else if (schema.empty() || starts_with(schema, "impulse/trajectory@")) {
         // An empty schema here means the text is not JSON: the trajectory
@@ -120,7 +131,10 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
             }
         }
         if (!why_not.empty()) {
-            err << "note: " << why_not << "; drawing paths, contact points and normals only\n";
+            progress->without_bar([&] {
+                err << "note: " << why_not << "; drawing paths, contact points and normals only\n"
+                    << std::flush;
+            });
             svg = render_svg(trajectory);
         }
     } else {
@@ -129,6 +143,7 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
                              "\") or a trajectory (\"" + trajectory_schema + "\")");
     }
 
+    progress.reset();
     if (const auto path = a.option("--out")) {
         write_file_atomically(*path, svg);
     } else {

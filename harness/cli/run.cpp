@@ -5,6 +5,7 @@
 #include "cli.h"
 #include "expectations.h"
 #include "number_format.h"
+#include "progress.h"
 
 #include <ostream>
 
@@ -12,7 +13,7 @@ namespace impulse::harness::cli {
 
 namespace {
 constexpr const char* run_help =
-    R"(usage: impulse run SCENE [--out FILE] [--dt S] [--integrator NAME] [--toi-tolerance S]
+    R"(usage: impulse run SCENE [--out FILE] [--dt S] [--integrator NAME] [--toi-tolerance S] [--quiet]
 
 Simulates SCENE (a path to an impulse/scene@1 file) with the impulse engine and
 writes its impulse/trajectory@1 to FILE (atomically) or to standard output.
@@ -21,6 +22,8 @@ writes its impulse/trajectory@1 to FILE (atomically) or to standard output.
   --dt S                time step in seconds (overrides the scene's dt)
   --integrator NAME     euler, symplectic-euler, verlet or rk4
   --toi-tolerance S     time-of-impact tolerance in seconds
+  --quiet               no progress bar (drawn on standard error only when that is a
+                        terminal, after about a second of work)
 
 Overrides change the physics and are recorded in the trajectory's solver block.
 The scene's declared expectations are checked: exit 1 when one fails (the
@@ -29,8 +32,8 @@ trajectory is still written), 2 for bad input.
 } // namespace
 
 int run_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-    const Arguments a =
-        parse_arguments(args, {"--out", "--dt", "--integrator", "--toi-tolerance"}, {"--help"});
+    const Arguments a = parse_arguments(args, {"--out", "--dt", "--integrator", "--toi-tolerance"},
+                                        {"--help", "--quiet"});
     if (a.has_flag("--help")) {
         out << run_help;
         return exit_ok;
@@ -58,7 +61,10 @@ int run_verb(const std::vector<std::string>& args, std::ostream& out, std::ostre
     for (const std::string& warning : scene.warnings) {
         err << "warning: " << warning << "\n";
     }
-    const Trajectory trajectory = run_scene(scene, overrides);
+    const Trajectory trajectory = [&] {
+        const Progress progress("run " + scene.name, progress_wanted(a.has_flag("--quiet")));
+        return run_scene(scene, overrides);
+    }();
     const std::string text = write_trajectory(trajectory);
     if (const auto path = a.option("--out")) {
         write_file_atomically(*path, text);

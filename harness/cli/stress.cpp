@@ -2,6 +2,7 @@
 #include "stress.h"
 
 #include "cli.h"
+#include "progress.h"
 
 #include <algorithm>
 #include <chrono>
@@ -41,6 +42,8 @@ its row shows the refusal. Each case's wall time is shown, never judged.
   --case NAME[,NAME...]  only these cases
   --list                 the cases and what each one does
   --json                 the results as JSON on standard output
+  --quiet                no progress bar (drawn on standard error only when that is
+                         a terminal, after about a second of work)
 
 Exit: 0 every row within its bound (or refused as expected), 1 otherwise, 2 bad input.
 )";
@@ -175,10 +178,32 @@ nlohmann::json to_json(const StressResult& r) {
             {"rows", std::move(rows)}};
 }
 
+// Runs the cases in order, each row printed as soon as its case is done
+// (the matrix takes seconds), with the progress bar between rows.
+std::vector<StressResult> run_cases(const std::vector<StressCase>& cases, bool json, bool quiet,
+                                    std::ostream& out) {
+    std::vector<StressResult> results;
+    Progress progress("stress", progress_wanted(quiet));
+    progress.set_total(cases.size(), "cases");
+    for (const StressCase& c : cases) {
+        progress.set_item(c.name);
+        results.push_back(run_stress_case(c));
+        progress.advance();
+        if (!json) {
+            progress.without_bar([&] {
+                write_case(results.back(), out);
+                out.flush();
+            });
+        }
+    }
+    return results;
+}
+
 } // namespace
 
 int stress_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& /*err*/) {
-    const Arguments a = parse_arguments(args, {"--case"}, {"--help", "--json", "--list"});
+    const Arguments a =
+        parse_arguments(args, {"--case"}, {"--help", "--json", "--list", "--quiet"});
     if (a.has_flag("--help")) {
         out << stress_help;
         return exit_ok;
@@ -214,14 +239,7 @@ int stress_verb(const std::vector<std::string>& args, std::ostream& out, std::os
             << " cases; the worst value of each invariant over every frame against its bound\n\n";
         write_header(out);
     }
-    std::vector<StressResult> results;
-    for (const StressCase& c : cases) {
-        results.push_back(run_stress_case(c));
-        if (!json) {
-            write_case(results.back(), out);
-            out.flush(); // a row as soon as its case is done: the matrix takes seconds
-        }
-    }
+    const std::vector<StressResult> results = run_cases(cases, json, a.has_flag("--quiet"), out);
     const double total =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     const auto failed = static_cast<std::size_t>(std::count_if(

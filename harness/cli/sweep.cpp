@@ -7,6 +7,7 @@
 #include "gate.h"
 #include "input_error.h"
 #include "number_format.h"
+#include "progress.h"
 #include "render.h"
 
 #include <algorithm>
@@ -18,7 +19,6 @@
 #include <ostream>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 namespace impulse::harness::cli {
@@ -69,7 +69,10 @@ together) dominating every point of Box2D's.
   --json                    the sweep as JSON on standard output
   --csv                     the sweep as CSV on standard output
   --svg FILE                an SVG plot of error against cost (log axes) with the fronts
-  --progress                progress on standard error even when it is not a terminal
+  --progress                a line per point on standard error, even when it is not a
+                            terminal
+  --quiet                   no progress bar (drawn on standard error only when that is a
+                            terminal, after about a second of work)
   --root DIR                where harness/scenes/ is (default: .)
 
 A LIST is comma-separated, e.g. --dt 0.01,0.005. Exit 0, or 2 for bad input.
@@ -633,7 +636,7 @@ int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
         parse_arguments(args,
                         {"--dt", "--integrator", "--toi", "--toi-tolerance", "--box2d-substeps",
                          "--box2d-iterations", "--ccd", "--repeats", "--svg", "--root"},
-                        {"--help", "--json", "--csv", "--no-box2d", "--progress"});
+                        {"--help", "--json", "--csv", "--no-box2d", "--progress", "--quiet"});
     if (a.has_flag("--help")) {
         out << sweep_help;
         return exit_ok;
@@ -653,20 +656,31 @@ int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
         err << "warning: " << warning << "\n";
     }
     const SweepConfig config = config_from(a, scene);
+    for (const std::string& warning : tunnelling_warnings(scene, config)) {
+        err << "warning: " << warning << "\n";
+    }
 #ifndef IMPULSE_WITH_BOX2D
     if (config.box2d && !a.has_flag("--no-box2d")) {
         err << "sweep: this tool was built without Box2D; impulse points only\n";
     }
 #endif
-    const bool show_progress = a.has_flag("--progress") || ::isatty(STDERR_FILENO) == 1;
-    SweepProgress progress;
-    if (show_progress) {
-        progress = [&err](std::size_t done, std::size_t total, const SweepPoint& p) {
-            err << "sweep: " << done << "/" << total << " " << p.family << " dt "
-                << format_double(p.dt) << (p.ok ? "" : " (failed)") << "\n";
+    // --progress: a line per point (for logs); on a terminal, the bar, erased
+    // before anything is written.
+    const SweepResult result = [&] {
+        Progress bar("sweep " + scene.name,
+                     !a.has_flag("--progress") && progress_wanted(a.has_flag("--quiet")));
+        SweepProgress progress = [&bar](std::size_t, std::size_t total, const SweepPoint&) {
+            bar.set_total(total, "points");
+            bar.advance();
         };
-    }
-    const SweepResult result = run_sweep(scene, config, progress);
+        if (a.has_flag("--progress")) {
+            progress = [&err](std::size_t done, std::size_t total, const SweepPoint& p) {
+                err << "sweep: " << done << "/" << total << " " << p.family << " dt "
+                    << format_double(p.dt) << (p.ok ? "" : " (failed)") << "\n";
+            };
+        }
+        return run_sweep(scene, config, progress);
+    }();
     if (const auto path = a.option("--svg")) {
         write_file_atomically(*path, sweep_svg(result));
     }
