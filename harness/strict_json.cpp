@@ -223,9 +223,25 @@ std::string closest_known_key(const std::string& key, const std::vector<std::str
     return closest;
 }
 
-template <class Json> Json parse_strict_json(const std::string& text, const std::string& file) {
+void check_json_text(const std::string& text, const std::string& file) {
     reject_merge_conflict_markers(text, file);
     reject_deep_nesting(text, file);
+}
+
+InputError json_syntax_error(const nlohmann::json::exception& error, const std::string& file,
+                             const std::string& path_of_next_value) {
+    // parse_error for syntax, out_of_range for a number too large for a double
+    // (nlohmann gives no line for that one). Both name the JSON path when the
+    // parser stopped where a value belongs (1e999, NaN, Infinity, a bad
+    // literal): a golden is megabytes, and the path says which number it is.
+    const std::string reason = shorten_parse_error(error.what());
+    const bool at_value = dynamic_cast<const nlohmann::json::out_of_range*>(&error) != nullptr ||
+                          reason.find("while parsing value") != std::string::npos;
+    return InputError(file, at_value ? path_of_next_value : "", "not valid JSON: " + reason);
+}
+
+template <class Json> Json parse_strict_json(const std::string& text, const std::string& file) {
+    check_json_text(text, file);
     DuplicateKeyFinder finder;
     Json document;
     try {
@@ -234,16 +250,7 @@ template <class Json> Json parse_strict_json(const std::string& text, const std:
                 return finder.on_event(event, parsed);
             });
     } catch (const nlohmann::json::exception& error) {
-        // parse_error for syntax, out_of_range for a number too large for a double
-        // (nlohmann gives no line for that one). Both name the JSON path when the
-        // parser stopped where a value belongs (1e999, NaN, Infinity, a bad
-        // literal): a golden is megabytes, and the path says which number it is.
-        const std::string reason = shorten_parse_error(error.what());
-        const bool at_value =
-            dynamic_cast<const nlohmann::json::out_of_range*>(&error) != nullptr ||
-            reason.find("while parsing value") != std::string::npos;
-        throw InputError(file, at_value ? finder.path_of_next_value() : "",
-                         "not valid JSON: " + reason);
+        throw json_syntax_error(error, file, finder.path_of_next_value());
     }
     if (finder.first_duplicate()) {
         throw InputError(file, *finder.first_duplicate(),

@@ -2,6 +2,8 @@
 // that is wrong says how, in one sentence, and never crashes the reader.
 #pragma once
 
+#include "input_error.h"
+
 #include <cstddef>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -20,6 +22,14 @@ inline constexpr int max_json_nesting = 64;
 // nlohmann would otherwise resolve silently by keeping one value. Json is
 // nlohmann::json or nlohmann::ordered_json.
 template <class Json> Json parse_strict_json(const std::string& text, const std::string& file);
+
+// The checks parse_strict_json makes before parsing (merge-conflict markers,
+// nesting), for readers that stream the text through nlohmann::sax_parse.
+void check_json_text(const std::string& text, const std::string& file);
+// The InputError parse_strict_json throws for nlohmann's parse_error or
+// out_of_range; `path_of_next_value` is where the parser stood.
+InputError json_syntax_error(const nlohmann::json::exception& error, const std::string& file,
+                             const std::string& path_of_next_value);
 
 // JSON paths as messages print them: `parent.key`, or `parent["odd key"]` for
 // keys that are not plain identifiers, and `parent[3]`.
