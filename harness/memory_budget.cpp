@@ -8,7 +8,8 @@
 namespace impulse::harness {
 
 std::uint64_t TrajectorySize::memory_bytes() const {
-    return numbers * bytes_per_number + arrays * bytes_per_array + objects * bytes_per_object;
+    return numbers * bytes_per_number + arrays * bytes_per_array + objects * bytes_per_object +
+           strings * bytes_per_string;
 }
 
 namespace {
@@ -79,6 +80,7 @@ TrajectorySize size_of_text(const std::string& text) {
         }
         in_number = digit || c == '-' || c == '+' || c == '.' || c == 'e' || c == 'E';
         if (c == '"') {
+            ++size.strings;
             in_string = true;
             in_number = false;
         } else if (c == '[') {
@@ -101,6 +103,7 @@ TrajectorySize header_size_bound(const std::vector<std::string>& columns) {
     size.numbers = 16; // the solver block's
     size.arrays = 8;   // columns, frames, events, solver overrides
     size.objects = 2;  // the document, the solver block
+    size.strings = 64 + columns.size();
     return size;
 }
 
@@ -120,12 +123,13 @@ TrajectorySize event_size_bound(std::size_t names_length) {
     size.numbers = 8;
     size.arrays = 2;
     size.objects = 1;
+    size.strings = 10; // 8 keys, 2 names
     return size;
 }
 
 TrajectorySize operator+(const TrajectorySize& a, const TrajectorySize& b) {
     return {a.text_bytes + b.text_bytes, a.numbers + b.numbers, a.arrays + b.arrays,
-            a.objects + b.objects};
+            a.objects + b.objects, a.strings + b.strings};
 }
 
 void require_within_trajectory_limit(const TrajectorySize& size, const std::string& file,

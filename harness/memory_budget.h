@@ -17,12 +17,14 @@ inline constexpr const char* trajectory_limit_variable = "IMPULSE_MAX_TRAJECTORY
 inline constexpr std::uint64_t largest_trajectory_limit_mib = 1024 * 1024; // 1 TiB
 
 // The memory model of a trajectory as the harness holds it: 8 bytes a
-// number (a double), and for each array and object the bookkeeping around
-// it (a frame's std::vector and its heap block; an event's strings and
-// slack), measured on this project's readers (docs/memory.md).
+// number (a double), and for each array, object and string the bookkeeping
+// around it (a frame's std::vector and its heap block; an event's fields and
+// slack; a std::string, whose characters the text's size already counts).
+// fuzz_trajectory checks that the reader never holds more (docs/memory.md).
 inline constexpr std::uint64_t bytes_per_number = 8;
 inline constexpr std::uint64_t bytes_per_array = 64;
 inline constexpr std::uint64_t bytes_per_object = 192;
+inline constexpr std::uint64_t bytes_per_string = 32;
 // The widest a number is written ("-2.2250738585072014e-308") plus ", ".
 inline constexpr std::uint64_t widest_number_text = 26;
 
@@ -32,6 +34,8 @@ struct TrajectorySize {
     std::uint64_t numbers = 0;
     std::uint64_t arrays = 0;
     std::uint64_t objects = 0;
+    std::uint64_t strings = 0;
+    // The model's bytes in memory; the strings' characters are not in it.
     std::uint64_t memory_bytes() const;
 };
 
@@ -44,8 +48,8 @@ std::string trajectory_limit_text();
 // How a refusal ends: "set IMPULSE_MAX_TRAJECTORY_MIB to a number of MiB to change the limit".
 std::string trajectory_limit_advice();
 
-// Counts the numbers, arrays and objects of a JSON text outside strings, in
-// one pass and without allocating: what reading it will hold.
+// Counts the numbers, arrays, objects and strings (keys too) of a JSON text,
+// in one pass and without allocating: what reading it will hold.
 TrajectorySize size_of_text(const std::string& text);
 
 // The most the lines before the frames can take: keys, names, solver block

@@ -286,7 +286,7 @@ TEST_CASE("a limit that is not a whole number of MiB is exit 2 naming the variab
     }
 }
 
-TEST_CASE("the reader's count of a text is its numbers, arrays and objects outside strings",
+TEST_CASE("the reader's count of a text: numbers, arrays and objects outside strings, and strings",
           "[unit][memory]") {
     using impulse::harness::size_of_text;
     const auto size = size_of_text(
@@ -294,4 +294,5 @@ TEST_CASE("the reader's count of a text is its numbers, arrays and objects outsi
     CHECK(size.numbers == 4);
     CHECK(size.arrays == 3);
     CHECK(size.objects == 2);
+    CHECK(size.strings == 5); // four keys and "[1, 2, {x}]"
 }
