@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 
 namespace impulse::fuzz {
 
@@ -182,13 +183,16 @@ std::size_t smallest_refused(const Trajectory& trajectory) {
     const harness::TrajectorySize one = size_at(1);
     const harness::TrajectorySize two = size_at(2);
     const std::uint64_t limit = harness::trajectory_limit_bytes();
-    std::size_t k = 1;
+    // Refused as soon as either the text or the memory is over.
+    std::size_t k = std::numeric_limits<std::size_t>::max();
     for (const auto& [at_one, per] :
          {std::pair{one.memory_bytes(), two.memory_bytes() - one.memory_bytes()},
           {one.text_bytes, two.text_bytes - one.text_bytes}}) {
-        if (at_one <= limit) {
-            k = std::max<std::size_t>(k, static_cast<std::size_t>((limit - at_one) / per + 2));
-        }
+        const std::size_t first_over = at_one > limit ? 1
+                                       : per == 0
+                                           ? std::numeric_limits<std::size_t>::max()
+                                           : static_cast<std::size_t>((limit - at_one) / per + 2);
+        k = std::min(k, first_over);
     }
     while (k > 1 && over_limit(size_at(k - 1))) {
         --k;
