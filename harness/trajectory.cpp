@@ -1,29 +1,18 @@
-// Reading and writing impulse/trajectory@1 (DESIGN.md, "Trajectory and golden
-// format"). Goldens are compared bit for bit, so the writer's layout is fixed
-// and the reader is strict: a golden that does not parse cleanly is an input
-// error naming the file and JSON path, never a crash.
+// Writing impulse/trajectory@1 (DESIGN.md, "Trajectory and golden format"),
+// and its digest. Goldens are compared bit for bit, so the writer's layout is
+// fixed. Reading is in trajectory_reader.cpp.
 #include "trajectory.h"
 
 #include "memory_budget.h"
 #include "number_format.h"
 
-#include <cmath>
 #include <cstddef>
 #include <cstring>
-#include <functional>
-#include <nlohmann/json.hpp>
-#include <set>
-#include <sstream>
 #include <stdexcept>
-#include <type_traits>
 
 namespace impulse::harness {
 
 namespace {
-
-// ordered_json keeps object keys in document order, which the solver block
-// needs so that it is written back the way it was read.
-using Json = nlohmann::ordered_json;
 
 constexpr std::uint64_t fnv_offset_basis = 0xcbf29ce484222325ULL;
 constexpr std::uint64_t fnv_prime = 0x100000001b3ULL;
