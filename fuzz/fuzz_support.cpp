@@ -1,10 +1,12 @@
 #include "fuzz_support.h"
 
 #include "input_error.h"
+#include "memory_budget.h"
 
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 
 namespace impulse::fuzz {
 
@@ -118,6 +120,126 @@ void check_round_trip(const Trajectory& trajectory) {
     }
     if (harness::write_trajectory(again) != written) {
         finding("a trajectory written, read back and written again gives other bytes");
+    }
+}
+
+namespace {
+
+// The trajectory with its frames repeated k times (the digest is the writer's).
+Trajectory repeated(const Trajectory& trajectory, std::size_t k) {
+    Trajectory scaled = trajectory;
+    scaled.frames.clear();
+    scaled.frames.reserve(trajectory.frames.size() * k);
+    for (std::size_t i = 0; i < k; ++i) {
+        scaled.frames.insert(scaled.frames.end(), trajectory.frames.begin(),
+                             trajectory.frames.end());
+    }
+    return scaled;
+}
+
+// A heap block as glibc's malloc takes it: the size rounded up to 16, plus 16.
+std::uint64_t block(std::size_t bytes) {
+    return bytes == 0 ? 0 : (bytes + 15) / 16 * 16 + 16;
+}
+
+// The heap a string holds beyond its own 32 bytes (short ones hold none).
+std::uint64_t heap_of(const std::string& text) {
+    return text.capacity() > 15 ? block(text.capacity() + 1) : 0;
+}
+
+// What the trajectory holds in memory, counted as malloc allocates it.
+std::uint64_t held_bytes(const Trajectory& t) {
+    std::uint64_t bytes = heap_of(t.scene) + heap_of(t.scene_sha256) + heap_of(t.engine);
+    bytes += block(t.solver.capacity() * sizeof(t.solver[0]));
+    for (const auto& [key, value] : t.solver) {
+        bytes += heap_of(key) + heap_of(value);
+    }
+    bytes += block(t.columns.capacity() * sizeof(std::string));
+    for (const std::string& column : t.columns) {
+        bytes += heap_of(column);
+    }
+    bytes += block(t.frames.capacity() * sizeof(t.frames[0]));
+    for (const std::vector<double>& frame : t.frames) {
+        bytes += block(frame.capacity() * sizeof(double));
+    }
+    bytes += block(t.events.capacity() * sizeof(TrajectoryEvent));
+    for (const TrajectoryEvent& event : t.events) {
+        bytes += heap_of(event.a) + heap_of(event.b);
+    }
+    return bytes;
+}
+
+bool over_limit(const harness::TrajectorySize& size) {
+    const std::uint64_t limit = harness::trajectory_limit_bytes();
+    return size.text_bytes > limit || size.memory_bytes() > limit;
+}
+
+// The smallest k >= 1 whose k-fold text the limit refuses; its size grows
+// linearly with k, so the estimate from k = 1 and 2 is corrected by a step at most.
+std::size_t smallest_refused(const Trajectory& trajectory) {
+    const auto size_at = [&](std::size_t k) {
+        return harness::size_of_text(harness::write_trajectory(repeated(trajectory, k)));
+    };
+    const harness::TrajectorySize one = size_at(1);
+    const harness::TrajectorySize two = size_at(2);
+    const std::uint64_t limit = harness::trajectory_limit_bytes();
+    // Refused as soon as either the text or the memory is over.
+    std::size_t k = std::numeric_limits<std::size_t>::max();
+    for (const auto& [at_one, per] :
+         {std::pair{one.memory_bytes(), two.memory_bytes() - one.memory_bytes()},
+          {one.text_bytes, two.text_bytes - one.text_bytes}}) {
+        const std::size_t first_over = at_one > limit ? 1
+                                       : per == 0
+                                           ? std::numeric_limits<std::size_t>::max()
+                                           : static_cast<std::size_t>((limit - at_one) / per + 2);
+        k = std::min(k, first_over);
+    }
+    while (k > 1 && over_limit(size_at(k - 1))) {
+        --k;
+    }
+    while (!over_limit(size_at(k))) {
+        ++k;
+    }
+    return k;
+}
+
+} // namespace
+
+void check_memory_budget(const Trajectory& trajectory) {
+    if (trajectory.frames.empty()) {
+        return; // nothing to repeat
+    }
+    const std::size_t k = smallest_refused(trajectory);
+    try {
+        harness::read_trajectory(harness::write_trajectory(repeated(trajectory, k)), "fuzz.json");
+        finding("a trajectory over the memory budget was read");
+    } catch (const InputError& error) {
+        if (std::string(error.what()).find("is too large to read") == std::string::npos) {
+            finding(std::string("a trajectory over the memory budget was parsed before it was "
+                                "refused: ") +
+                    error.what());
+        }
+    }
+    if (k == 1) {
+        return;
+    }
+    const Trajectory under = repeated(trajectory, k - 1);
+    const std::string text = harness::write_trajectory(under);
+    Trajectory read;
+    try {
+        read = harness::read_trajectory(text, "fuzz.json");
+    } catch (const InputError& error) {
+        finding(std::string("a trajectory within the memory budget was refused: ") + error.what());
+    }
+    if (!same_trajectory(read, under)) {
+        finding("a trajectory within the memory budget did not read back the same");
+    }
+    const harness::TrajectorySize size = harness::size_of_text(text);
+    if (held_bytes(read) > size.memory_bytes() + size.text_bytes) {
+        finding("the reader holds " + std::to_string(held_bytes(read)) +
+                " bytes, more than the budget's model of its text counts (" +
+                std::to_string(size.memory_bytes()) + " + " + std::to_string(size.text_bytes) +
+                " bytes of text)");
     }
 }
 

@@ -39,4 +39,13 @@ bool same_trajectory(const harness::Trajectory& a, const harness::Trajectory& b)
 // bytes. Anything else is a finding.
 void check_round_trip(const harness::Trajectory& trajectory);
 
+// The memory budget's promise (docs/memory.md), under the limit the run has
+// set (IMPULSE_MAX_TRAJECTORY_MIB): the trajectory's frames repeated k times,
+// k the smallest count the limit refuses, are refused by the reader before it
+// parses them ("is too large to read"); repeated k - 1 times they read back,
+// the same trajectory, and the reader holds no more bytes than the budget's
+// model counted for their text (plus the strings' characters). Anything else
+// is a finding.
+void check_memory_budget(const harness::Trajectory& trajectory);
+
 } // namespace impulse::fuzz

@@ -2,6 +2,7 @@
 
 #include "input_error.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -82,6 +83,13 @@ std::string read_file(const std::string& path, std::size_t limit_bytes, const st
     }
     // Read at most one byte past the limit, so a huge file is refused without reading it all.
     std::string text;
+    // Reserved once: a string that doubles as it grows holds up to three
+    // times the file for a moment (docs/memory.md).
+    std::error_code size_error;
+    const std::uintmax_t size = fs::file_size(path, size_error);
+    if (!size_error) {
+        text.reserve(static_cast<std::size_t>(std::min<std::uintmax_t>(size, limit_bytes) + 1));
+    }
     char buffer[65536];
     while (in && text.size() <= limit_bytes) {
         in.read(buffer, sizeof buffer);

@@ -19,9 +19,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Goldens can be large (long runs); anything beyond this is not a golden.
-constexpr std::size_t max_trajectory_bytes = 256u * 1024 * 1024;
-
 std::uint64_t fnv1a(const std::string& text) {
     std::uint64_t h = 0xcbf29ce484222325ull;
     for (unsigned char c : text) {
@@ -324,9 +321,7 @@ SceneCheck check_scene(const GateRoot& root, const std::string& scene_path,
                              "no golden for scene '" + scene.name +
                                  "'; bless it with scripts/regen-goldens " + scene.name);
         }
-        check.gold = read_trajectory(
-            read_file(check.golden_file, max_trajectory_bytes, "a golden is at most that"),
-            check.golden_file);
+        check.gold = read_trajectory_file(check.golden_file, "a golden");
         if (tolerances) {
             const std::vector<Channel> missing =
                 channels_without_tolerance(*check.gold, *tolerances);
@@ -385,6 +380,8 @@ Blessing bless_scene(const GateRoot& root, const std::string& scene_path) {
         return blessing;
     }
     const std::string text = write_trajectory(trajectory);
+    // Never a golden that check would refuse.
+    require_readable_size(text, blessing.golden_file);
 
     refuse_case_variant_golden(root, scene_path, scene.name);
     if (!entry_exists(blessing.golden_file)) {
@@ -392,8 +389,7 @@ Blessing bless_scene(const GateRoot& root, const std::string& scene_path) {
     } else {
         std::string old_text;
         try {
-            old_text =
-                read_file(blessing.golden_file, max_trajectory_bytes, "a golden is at most that");
+            old_text = read_trajectory_text(blessing.golden_file, "a golden");
         } catch (const InputError& e) {
             old_text.clear();
             blessing.summary = std::string("the old golden could not be read: ") + e.what() + "\n";

@@ -1,5 +1,6 @@
 // The impulse engine behind the harness's Simulator interface.
 #include "input_error.h"
+#include "memory_budget.h"
 #include "number_format.h"
 #include "progress.h"
 #include "simulator.h"
@@ -32,8 +33,15 @@ class ImpulseSimulator final : public Simulator {
     explicit ImpulseSimulator(const Scene& scene) : scene_(scene) {
         std::vector<Body> bodies;
         bodies.reserve(scene.bodies.size());
+        std::uint64_t dynamic = 0;
         for (const SceneBody& spec : scene.bodies) {
             bodies.push_back(body_from(spec));
+            dynamic += spec.is_static ? 0 : 1;
+        }
+        // World stepping's pair list grows as N^2 (docs/memory.md): refused
+        // here, before it is built, when it would not fit.
+        if (scene.solver.stepping == Stepping::world) {
+            require_world_pairs_within_limit(dynamic, scene.bodies.size() - dynamic, scene.file);
         }
         world_ = make_world(std::move(bodies), scene.gravity, scene.restitution, scene.solver);
     }
@@ -201,12 +209,30 @@ Trajectory record(Simulator& simulator, const Scene& scene) {
     };
 
     const long long steps = step_count(scene);
+    // The frames are known before the run: a trajectory that could exceed
+    // the limit is refused before anything is simulated (docs/memory.md).
+    TrajectorySize size =
+        header_size_bound(trajectory.columns) +
+        frames_size_bound(static_cast<std::uint64_t>(steps) + 1, trajectory.columns.size());
+    require_within_trajectory_limit(size, scene.file, "duration",
+                                    "the run would record " + std::to_string(steps + 1) +
+                                        " frames of " + std::to_string(trajectory.columns.size()) +
+                                        " numbers (" + std::to_string(steps) + " steps)",
+                                    true);
     trajectory.frames.reserve(static_cast<std::size_t>(steps) + 1);
     trajectory.frames.push_back(frame_at(0.0));
     for (long long k = 0; k < steps; ++k) {
         // Time as k dt, never accumulated, so it does not drift.
         simulator.step(static_cast<double>(k) * scene.dt, scene.dt);
         for (TrajectoryEvent& e : simulator.take_events()) {
+            // Events are not known up front: the run stops, with a sentence,
+            // at the first that could take the trajectory past the limit.
+            size = size + event_size_bound(e.a.size() + e.b.size());
+            require_within_trajectory_limit(
+                size, scene.file, "",
+                "the run stopped at t = " + format_double(e.t) + " s: its frames and " +
+                    std::to_string(trajectory.events.size() + 1) + " collision events so far",
+                true);
             trajectory.events.push_back(std::move(e));
         }
         trajectory.frames.push_back(frame_at(static_cast<double>(k + 1) * scene.dt));

@@ -66,41 +66,6 @@ bool is_number_char(char c) {
     return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.' || c == 'e' || c == 'E';
 }
 
-// The ordinals, counting every number token in document order, of the tokens
-// spelled exactly "-0": the parser reports numbers in that same order, and
-// only the text keeps the sign of an integer zero.
-std::vector<std::size_t> minus_zero_integers(const std::string& text) {
-    std::vector<std::size_t> found;
-    std::size_t ordinal = 0;
-    bool in_string = false;
-    bool escaped = false;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        const char c = text[i];
-        if (in_string) {
-            if (escaped) {
-                escaped = false;
-            } else if (c == '\\') {
-                escaped = true;
-            } else if (c == '"') {
-                in_string = false;
-            }
-        } else if (c == '"') {
-            in_string = true;
-        } else if (c == '-' || (c >= '0' && c <= '9')) {
-            std::size_t end = i;
-            while (end < text.size() && is_number_char(text[end])) {
-                ++end;
-            }
-            if (end - i == 2 && text.compare(i, 2, "-0") == 0) {
-                found.push_back(ordinal);
-            }
-            ++ordinal;
-            i = end - 1;
-        }
-    }
-    return found;
-}
-
 // nlohmann's message, e.g. "[json.exception.parse_error.101] parse error at
 // line 1, column 10: syntax error while parsing value - invalid literal; last
 // read: '"a": tru}'", cut to "line 1, column 10: invalid literal while parsing
@@ -262,40 +227,34 @@ std::string closest_known_key(const std::string& key, const std::vector<std::str
     return closest;
 }
 
-template <class Json>
-Json parse_strict_json(const std::string& text, const std::string& file, MinusZero minus_zero) {
+void check_json_text(const std::string& text, const std::string& file) {
     reject_merge_conflict_markers(text, file);
     reject_deep_nesting(text, file);
-    const std::vector<std::size_t> negative_zeros = minus_zero == MinusZero::negative_zero
-                                                        ? minus_zero_integers(text)
-                                                        : std::vector<std::size_t>{};
-    std::size_t number_ordinal = 0;
-    std::size_t next_negative_zero = 0;
+}
+
+InputError json_syntax_error(const nlohmann::json::exception& error, const std::string& file,
+                             const std::string& path_of_next_value) {
+    // parse_error for syntax, out_of_range for a number too large for a double
+    // (nlohmann gives no line for that one). Both name the JSON path when the
+    // parser stopped where a value belongs (1e999, NaN, Infinity, a bad
+    // literal): a golden is megabytes, and the path says which number it is.
+    const std::string reason = shorten_parse_error(error.what());
+    const bool at_value = dynamic_cast<const nlohmann::json::out_of_range*>(&error) != nullptr ||
+                          reason.find("while parsing value") != std::string::npos;
+    return InputError(file, at_value ? path_of_next_value : "", "not valid JSON: " + reason);
+}
+
+template <class Json> Json parse_strict_json(const std::string& text, const std::string& file) {
+    check_json_text(text, file);
     DuplicateKeyFinder finder;
     Json document;
     try {
-        document = Json::parse(text, [&](int, nlohmann::json::parse_event_t event, Json& parsed) {
-            if (event == nlohmann::json::parse_event_t::value && parsed.is_number()) {
-                if (next_negative_zero < negative_zeros.size() &&
-                    negative_zeros[next_negative_zero] == number_ordinal) {
-                    parsed = -0.0;
-                    ++next_negative_zero;
-                }
-                ++number_ordinal;
-            }
-            return finder.on_event(event, parsed);
-        });
+        document =
+            Json::parse(text, [&finder](int, nlohmann::json::parse_event_t event, Json& parsed) {
+                return finder.on_event(event, parsed);
+            });
     } catch (const nlohmann::json::exception& error) {
-        // parse_error for syntax, out_of_range for a number too large for a double
-        // (nlohmann gives no line for that one). Both name the JSON path when the
-        // parser stopped where a value belongs (1e999, NaN, Infinity, a bad
-        // literal): a golden is megabytes, and the path says which number it is.
-        const std::string reason = shorten_parse_error(error.what());
-        const bool at_value =
-            dynamic_cast<const nlohmann::json::out_of_range*>(&error) != nullptr ||
-            reason.find("while parsing value") != std::string::npos;
-        throw InputError(file, at_value ? finder.path_of_next_value() : "",
-                         "not valid JSON: " + reason);
+        throw json_syntax_error(error, file, finder.path_of_next_value());
     }
     if (finder.first_duplicate()) {
         throw InputError(file, *finder.first_duplicate(),
@@ -304,9 +263,43 @@ Json parse_strict_json(const std::string& text, const std::string& file, MinusZe
     return document;
 }
 
-template nlohmann::json parse_strict_json<nlohmann::json>(const std::string&, const std::string&,
-                                                          MinusZero);
-template nlohmann::ordered_json
-parse_strict_json<nlohmann::ordered_json>(const std::string&, const std::string&, MinusZero);
+template nlohmann::json parse_strict_json<nlohmann::json>(const std::string&, const std::string&);
+template nlohmann::ordered_json parse_strict_json<nlohmann::ordered_json>(const std::string&,
+                                                                          const std::string&);
+
+// The ordinals, counting every number token in document order, of the tokens
+// spelled exactly "-0": the parser reports numbers in that same order, and
+// only the text keeps the sign of an integer zero.
+std::vector<std::size_t> minus_zero_integers(const std::string& text) {
+    std::vector<std::size_t> found;
+    std::size_t ordinal = 0;
+    bool in_string = false;
+    bool escaped = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (in_string) {
+            if (escaped) {
+                escaped = false;
+            } else if (c == '\\') {
+                escaped = true;
+            } else if (c == '"') {
+                in_string = false;
+            }
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '-' || (c >= '0' && c <= '9')) {
+            std::size_t end = i;
+            while (end < text.size() && is_number_char(text[end])) {
+                ++end;
+            }
+            if (end - i == 2 && text.compare(i, 2, "-0") == 0) {
+                found.push_back(ordinal);
+            }
+            ++ordinal;
+            i = end - 1;
+        }
+    }
+    return found;
+}
 
 } // namespace impulse::harness

@@ -2,6 +2,8 @@
 // that is wrong says how, in one sentence, and never crashes the reader.
 #pragma once
 
+#include "input_error.h"
+
 #include <cstddef>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -19,16 +21,22 @@ inline constexpr int max_json_nesting = 64;
 // NaN, Infinity), and a key repeated in one object (with its JSON path), which
 // nlohmann would otherwise resolve silently by keeping one value. Json is
 // nlohmann::json or nlohmann::ordered_json.
-//
-// `minus_zero` says how the integer token -0 reads. JSON allows it and
-// nlohmann reads it as the integer 0, losing the sign; trajectories promise
-// that -0.0 and +0.0 are told apart in every spelling, so their reader asks
-// for negative_zero (-0 becomes the double -0.0). Scenes keep the plain
-// reading, so that no scene's fingerprint changes.
-enum class MinusZero { integer_zero, negative_zero };
-template <class Json>
-Json parse_strict_json(const std::string& text, const std::string& file,
-                       MinusZero minus_zero = MinusZero::integer_zero);
+template <class Json> Json parse_strict_json(const std::string& text, const std::string& file);
+
+// The ordinals (0-based, counting every number token in document order) of
+// the integer tokens spelled exactly -0. JSON allows them and nlohmann reads
+// them as the integer 0, losing the sign; trajectories promise that -0.0 and
+// +0.0 are told apart in every spelling, so their reader turns these into the
+// double -0.0. Scenes keep the plain reading, so no scene's fingerprint moves.
+std::vector<std::size_t> minus_zero_integers(const std::string& text);
+
+// The checks parse_strict_json makes before parsing (merge-conflict markers,
+// nesting), for readers that stream the text through nlohmann::sax_parse.
+void check_json_text(const std::string& text, const std::string& file);
+// The InputError parse_strict_json throws for nlohmann's parse_error or
+// out_of_range; `path_of_next_value` is where the parser stood.
+InputError json_syntax_error(const nlohmann::json::exception& error, const std::string& file,
+                             const std::string& path_of_next_value);
 
 // JSON paths as messages print them: `parent.key`, or `parent["odd key"]` for
 // keys that are not plain identifiers, and `parent[3]`.

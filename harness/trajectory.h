@@ -47,6 +47,19 @@ std::string write_trajectory(const Trajectory& trajectory);
 
 // Parses and validates; throws InputError naming `file` and the JSON path.
 // Checks the stored digest against the data.
+// Refuses, before parsing, a text whose numbers, frames and events would
+// take more memory than the trajectory limit (docs/memory.md).
 Trajectory read_trajectory(const std::string& text, const std::string& file);
+
+// Reads the file at `path` (at most the trajectory limit) and parses it;
+// `what` names it in a refusal ("a golden", "a trajectory").
+Trajectory read_trajectory_file(const std::string& path, const std::string& what);
+// The text of a trajectory file within the trajectory limit.
+std::string read_trajectory_text(const std::string& path, const std::string& what);
+
+// Refuses (InputError naming `file`) a text read_trajectory would refuse for
+// its size: every writer calls it first, so nothing is written that the
+// readers refuse.
+void require_readable_size(const std::string& text, const std::string& file);
 
 } // namespace impulse::harness

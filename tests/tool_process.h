@@ -45,6 +45,37 @@ struct ChildLimits {
     std::optional<rlim_t> file_size_bytes;
 };
 
+// The tool's argv and environment: the test's environment without CI (so
+// bless writes), plus `extra_env` ("CI=true"). The pointers point into the
+// strings held here, so they live as long as the command.
+struct ToolCommand {
+    std::vector<std::string> arguments;
+    std::vector<std::string> environment;
+    std::vector<char*> argv;
+    std::vector<char*> envp;
+
+    ToolCommand(const std::vector<std::string>& args, const std::vector<std::string>& extra_env) {
+        for (char** entry = environ; *entry != nullptr; ++entry) {
+            if (std::string(*entry).rfind("CI=", 0) != 0) {
+                environment.emplace_back(*entry);
+            }
+        }
+        environment.insert(environment.end(), extra_env.begin(), extra_env.end());
+        arguments = {IMPULSE_BINARY};
+        arguments.insert(arguments.end(), args.begin(), args.end());
+        for (std::string& a : arguments) {
+            argv.push_back(a.data());
+        }
+        argv.push_back(nullptr);
+        for (std::string& e : environment) {
+            envp.push_back(e.data());
+        }
+        envp.push_back(nullptr);
+    }
+    ToolCommand(const ToolCommand&) = delete;
+    ToolCommand& operator=(const ToolCommand&) = delete;
+};
+
 // Starts the built tool without a shell, its output going to the given files
 // (or /dev/null). CI is taken out of the environment, so bless writes;
 // `extra_env` adds to it ("CI=true").
@@ -52,24 +83,9 @@ inline pid_t start_tool(const std::vector<std::string>& args,
                         const std::vector<std::string>& extra_env = {},
                         const std::string& out_file = "/dev/null",
                         const std::string& err_file = "/dev/null") {
-    std::vector<std::string> env;
-    for (char** entry = environ; *entry != nullptr; ++entry) {
-        if (std::string(*entry).rfind("CI=", 0) != 0) {
-            env.emplace_back(*entry);
-        }
-    }
-    env.insert(env.end(), extra_env.begin(), extra_env.end());
-    std::vector<std::string> arguments = {IMPULSE_BINARY};
-    arguments.insert(arguments.end(), args.begin(), args.end());
-    std::vector<char*> argv, envp;
-    for (std::string& a : arguments) {
-        argv.push_back(a.data());
-    }
-    argv.push_back(nullptr);
-    for (std::string& e : env) {
-        envp.push_back(e.data());
-    }
-    envp.push_back(nullptr);
+    ToolCommand command(args, extra_env);
+    std::vector<char*>& argv = command.argv;
+    std::vector<char*>& envp = command.envp;
 
     posix_spawn_file_actions_t files;
     posix_spawn_file_actions_init(&files);
@@ -89,24 +105,11 @@ inline pid_t start_tool(const std::vector<std::string>& args,
 // cannot set resource limits; only async-signal-safe calls in the child.
 inline pid_t start_tool_limited(const std::vector<std::string>& args, const ChildLimits& limits,
                                 const std::string& out_file = "/dev/null",
-                                const std::string& err_file = "/dev/null") {
-    std::vector<std::string> env;
-    for (char** entry = environ; *entry != nullptr; ++entry) {
-        if (std::string(*entry).rfind("CI=", 0) != 0) {
-            env.emplace_back(*entry);
-        }
-    }
-    std::vector<std::string> arguments = {IMPULSE_BINARY};
-    arguments.insert(arguments.end(), args.begin(), args.end());
-    std::vector<char*> argv, envp;
-    for (std::string& a : arguments) {
-        argv.push_back(a.data());
-    }
-    argv.push_back(nullptr);
-    for (std::string& e : env) {
-        envp.push_back(e.data());
-    }
-    envp.push_back(nullptr);
+                                const std::string& err_file = "/dev/null",
+                                const std::vector<std::string>& extra_env = {}) {
+    ToolCommand command(args, extra_env);
+    std::vector<char*>& argv = command.argv;
+    std::vector<char*>& envp = command.envp;
     const struct rlimit address_space = {limits.address_space_bytes.value_or(RLIM_INFINITY),
                                          limits.address_space_bytes.value_or(RLIM_INFINITY)};
     const struct rlimit file_size = {limits.file_size_bytes.value_or(RLIM_INFINITY),

@@ -1,5 +1,4 @@
 // `impulse diff A B`: compare two trajectory files with the rules of `check`.
-#include "atomic_file.h"
 #include "cli.h"
 #include "compare.h"
 #include "trajectory.h"
@@ -41,12 +40,8 @@ no failure by itself. Exits 2 when a file cannot be read or is not a valid
 trajectory, or for a bad option.
 )";
 
-// Trajectories of long runs are large; anything beyond this is not one.
-constexpr std::size_t max_trajectory_bytes = 256u * 1024 * 1024;
-
 Trajectory load_trajectory(const std::string& path) {
-    return read_trajectory(read_file(path, max_trajectory_bytes, "a trajectory is at most that"),
-                           path);
+    return read_trajectory_file(path, "a trajectory");
 }
 
 // Without a scene, tolerances come only from the command line.

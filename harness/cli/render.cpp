@@ -36,9 +36,6 @@ The file's "schema" decides what it is:
                    terminal, after about a second of work)
 )";
 
-// A trajectory of a long run is large; beyond this it is refused.
-constexpr std::size_t max_trajectory_bytes = std::size_t{256} * 1024 * 1024;
-
 // The top-level "schema" string, or "" when there is none; throws InputError
 // for text that is not JSON. Only that one value is kept while parsing.
 std::string schema_of(const std::string& text, const std::string& file) {
@@ -88,8 +85,7 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
                          std::to_string(a.positional.size()));
     }
     const std::string& input = a.positional.front();
-    const std::string text =
-        read_file(input, max_trajectory_bytes, "a trajectory of that size is too large to draw");
+    const std::string text = read_trajectory_text(input, "a trajectory to draw");
     const std::string schema = schema_of(text, input);
 
     // Erased (reset) before anything is written.

@@ -66,6 +66,8 @@ int run_verb(const std::vector<std::string>& args, std::ostream& out, std::ostre
         return run_scene(scene, overrides);
     }();
     const std::string text = write_trajectory(trajectory);
+    // Nothing that diff, check or render would refuse, on a file or on stdout.
+    require_readable_size(text, a.option("--out").value_or("standard output"));
     if (const auto path = a.option("--out")) {
         write_file_atomically(*path, text);
     } else {
