@@ -138,7 +138,10 @@ std::vector<std::string> canonical_scenes(const GateRoot& root) {
     }
     std::vector<std::string> paths;
     for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
-        if (entry.is_regular_file() && entry.path().extension() == ".json") {
+        // Anything but a folder is listed, so a FIFO or a dangling link named
+        // NAME.json is an ERROR row (read_file refuses it) instead of a scene
+        // silently left out of the gate; listing opens nothing.
+        if (!entry.is_directory() && entry.path().extension() == ".json") {
             paths.push_back(entry.path().string());
         }
     }
