@@ -4,6 +4,7 @@
 #include "atomic_file.h"
 #include "cli.h"
 #include "input_error.h"
+#include "output_path.h"
 #include "run.h"
 
 #include <cstddef>
@@ -29,6 +30,7 @@ The file's "schema" decides what it is:
                         otherwise only paths, contact points and normals
 
   --out FILE.svg   write the picture here (atomically) instead of standard output
+                   (a regular file, never one in goldens/; - is standard output)
   --root DIR       where harness/scenes/ is (default: the current directory)
 )";
 
@@ -84,6 +86,10 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
                          std::to_string(a.positional.size()));
     }
     const std::string& input = a.positional.front();
+    const std::vector<std::string> goldens = goldens_folders(a.option("--root").value_or("."));
+    if (const auto path = a.option("--out")) {
+        check_output_file("--out", *path, goldens);
+    }
     const std::string text =
         read_file(input, max_trajectory_bytes, "a trajectory of that size is too large to draw");
     const std::string schema = schema_of(text, input);
@@ -129,11 +135,7 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
                              "\") or a trajectory (\"" + trajectory_schema + "\")");
     }
 
-    if (const auto path = a.option("--out")) {
-        write_file_atomically(*path, svg);
-    } else {
-        out << svg;
-    }
+    write_output_file("--out", a.option("--out").value_or(standard_output), svg, goldens, out);
     return exit_ok;
 }
 
