@@ -50,11 +50,12 @@ int bless_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
             switch (b.outcome) {
             case Blessing::Outcome::created:
                 ++created;
-                out << "  new        " << b.name << " -> " << b.golden_file << "\n";
+                out << "  new        " << b.name << " -> " << printable_path(b.golden_file) << "\n";
                 break;
             case Blessing::Outcome::changed:
                 ++changed;
-                out << "  changed    " << b.name << " -> " << b.golden_file << "\n" << b.summary;
+                out << "  changed    " << b.name << " -> " << printable_path(b.golden_file) << "\n"
+                    << b.summary;
                 break;
             case Blessing::Outcome::unchanged:
                 ++unchanged;
@@ -74,9 +75,10 @@ int bless_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
         if (a.has_flag("--prune")) {
             std::filesystem::remove(golden);
             ++removed;
-            out << "  removed    " << golden << "\n";
+            out << "  removed    " << printable_path(golden) << "\n";
         } else {
-            out << "  unreferenced " << golden << " (no scene of that name; --prune deletes it)\n";
+            out << "  unreferenced " << printable_path(golden)
+                << " (no scene of that name; --prune deletes it)\n";
         }
     }
     out << "goldens: " << created << " new, " << changed << " changed, " << unchanged
