@@ -285,6 +285,21 @@ TEST_CASE("The path - writes an output to standard output", "[unit][output-paths
     CHECK(junit.out.find("check: ") == std::string::npos);
     CHECK(junit.err.find("1 scene: 1 passed, 0 failed, 0 errors") != std::string::npos);
 
+    // The smallest grid; its table moves to standard error.
+    const std::vector<std::string> sweep = {"sweep", scene,          "--dt",
+                                            "0.01",  "--integrator", "verlet",
+                                            "--toi", "secant",       "--toi-tolerance",
+                                            "1e-9",  "--no-box2d",   "--repeats",
+                                            "1",     "--svg",        "-"};
+    const Outcome plot = impulse_tool(sweep);
+    CHECK(plot.exit_code == 0);
+    CHECK(plot.out.find("<svg") != std::string::npos);
+    CHECK(plot.out.find("grid points") == std::string::npos);
+    CHECK(plot.err.find("1 points measured") != std::string::npos);
+    std::vector<std::string> both = sweep;
+    both.push_back("--json");
+    CHECK(impulse_tool(both).exit_code == 2); // two outputs cannot share standard output
+
     // A folder is no stream.
     check_refused(impulse_tool({"check", "drop-box", "--root", root.string(), "--report", "-"}),
                   "-", "--report");
