@@ -5,6 +5,7 @@
 #include "input_error.h"
 
 #include <filesystem>
+#include <iterator>
 #include <ostream>
 
 namespace impulse::harness {
