@@ -1,5 +1,6 @@
 #include "atomic_file.h"
 
+#include "file_kind.h"
 #include "input_error.h"
 
 #include <algorithm>
@@ -7,10 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
-#include <filesystem>
-#include <fstream>
 #include <sys/stat.h>
-#include <system_error>
 #include <unistd.h>
 
 namespace impulse::harness {
@@ -19,10 +17,48 @@ namespace {
 std::string reason() {
     return std::strerror(errno);
 }
+
+// "No such file or directory" reads better mid-sentence as "no such ...".
+std::string lower_first(std::string text) {
+    if (!text.empty() && text[0] >= 'A' && text[0] <= 'Z') {
+        text[0] = static_cast<char>(text[0] - 'A' + 'a');
+    }
+    return text;
+}
+
+// Closed on every way out, so a refusal never leaks the descriptor.
+struct Descriptor {
+    int fd = -1;
+    ~Descriptor() {
+        if (fd >= 0) {
+            ::close(fd);
+        }
+    }
+};
+
+[[noreturn]] void refuse_to_read(const std::string& path, FileKind kind) {
+    if (kind == FileKind::directory) {
+        throw InputError(path, "", "cannot be read (it is a directory)");
+    }
+    throw InputError(path, "",
+                     std::string("cannot be read (it is ") + kind_words(kind) +
+                         "; impulse reads only regular files)");
+}
 } // namespace
 
+void require_regular_or_missing(const std::string& path) {
+    const FileKind kind = kind_at(path);
+    if (kind != FileKind::missing && kind != FileKind::regular) {
+        throw InputError(path, "",
+                         std::string("cannot be written (it is ") + kind_words(kind) +
+                             "; impulse writes only regular files)");
+    }
+}
+
 void write_file_atomically(const std::string& path, const std::string& content) {
-    // Same directory as the target, so rename() cannot cross file systems.
+    require_regular_or_missing(path);
+    // Same directory as the target, so rename() cannot cross file systems;
+    // mkstemp creates it with O_EXCL, so it is never something already there.
     std::string temp = path + ".tmp-XXXXXX";
     const int fd = mkstemp(temp.data());
     if (fd < 0) {
@@ -48,55 +84,69 @@ void write_file_atomically(const std::string& path, const std::string& content) 
     const mode_t mask = ::umask(0);
     ::umask(mask);
     ::fchmod(fd, 0666 & ~mask);
-    if (::fsync(fd) != 0 || ::close(fd) != 0 || std::rename(temp.c_str(), path.c_str()) != 0) {
+    if (::fsync(fd) != 0 || ::close(fd) != 0) {
+        const std::string why = reason();
+        std::remove(temp.c_str());
+        throw InputError(path, "", "cannot be written (" + why + ")");
+    }
+    // Something may have appeared at the path while the file was written.
+    try {
+        require_regular_or_missing(path);
+    } catch (const InputError&) {
+        std::remove(temp.c_str());
+        throw;
+    }
+    if (std::rename(temp.c_str(), path.c_str()) != 0) {
         const std::string why = reason();
         std::remove(temp.c_str());
         throw InputError(path, "", "cannot be written (" + why + ")");
     }
 }
 
-// "No such file or directory" reads better mid-sentence as "no such ...".
-std::string lower_first(std::string text) {
-    if (!text.empty() && text[0] >= 'A' && text[0] <= 'Z') {
-        text[0] = static_cast<char>(text[0] - 'A' + 'a');
-    }
-    return text;
-}
-
 std::string read_file(const std::string& path, std::size_t limit_bytes, const std::string& what) {
-    namespace fs = std::filesystem;
-    std::error_code error;
-    const fs::file_status status = fs::status(path, error);
-    if (error) {
-        throw InputError(path, "", "cannot be read (" + lower_first(error.message()) + ")");
+    // Looked at before opening: opening a FIFO could block and opening a
+    // device could do anything.
+    struct stat info {};
+    if (::stat(path.c_str(), &info) != 0) {
+        throw InputError(path, "", "cannot be read (" + lower_first(reason()) + ")");
     }
-    if (fs::is_directory(status)) {
-        throw InputError(path, "", "cannot be read (it is a directory)");
+    if (!S_ISREG(info.st_mode)) {
+        refuse_to_read(path, kind_of_mode(info.st_mode));
     }
-    errno = 0;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        // libstdc++ and libc++ open through the C library, which sets errno.
-        const std::string why =
-            errno != 0 ? std::generic_category().message(errno) : "it could not be opened";
-        throw InputError(path, "", "cannot be read (" + lower_first(why) + ")");
+    // Non-blocking and checked again on the descriptor: the path may have
+    // been replaced by a FIFO since it was looked at.
+    Descriptor file;
+    file.fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (file.fd < 0) {
+        throw InputError(path, "", "cannot be read (" + lower_first(reason()) + ")");
+    }
+    if (::fstat(file.fd, &info) != 0) {
+        throw InputError(path, "", "cannot be read (" + lower_first(reason()) + ")");
+    }
+    if (!S_ISREG(info.st_mode)) {
+        refuse_to_read(path, kind_of_mode(info.st_mode));
     }
     // Read at most one byte past the limit, so a huge file is refused without reading it all.
     std::string text;
     // Reserved once: a string that doubles as it grows holds up to three
     // times the file for a moment (docs/memory.md).
-    std::error_code size_error;
-    const std::uintmax_t size = fs::file_size(path, size_error);
-    if (!size_error) {
-        text.reserve(static_cast<std::size_t>(std::min<std::uintmax_t>(size, limit_bytes) + 1));
-    }
+    const auto size = static_cast<std::uintmax_t>(info.st_size);
+    text.reserve(static_cast<std::size_t>(std::min<std::uintmax_t>(size, limit_bytes) + 1));
     char buffer[65536];
-    while (in && text.size() <= limit_bytes) {
-        in.read(buffer, sizeof buffer);
-        text.append(buffer, static_cast<std::size_t>(in.gcount()));
-    }
-    if (in.bad()) {
-        throw InputError(path, "", "cannot be read (an I/O error occurred while reading)");
+    while (text.size() <= limit_bytes) {
+        const ssize_t n = ::read(file.fd, buffer, sizeof buffer);
+        if (n < 0 && errno == EINTR) {
+            continue;
+        }
+        if (n < 0) {
+            throw InputError(path, "",
+                             "cannot be read (an I/O error occurred while reading: " +
+                                 lower_first(reason()) + ")");
+        }
+        if (n == 0) {
+            break;
+        }
+        text.append(buffer, static_cast<std::size_t>(n));
     }
     if (text.size() > limit_bytes) {
         throw InputError(path, "",

@@ -7,9 +7,15 @@
 
 namespace impulse::harness {
 
+// A file name fit for a message: valid UTF-8 is kept; a byte that is not part
+// of valid UTF-8, and a control character, is written \xNN (C1 controls as
+// \u0080..\u009F), so a message is always valid text on one line.
+std::string printable_path(const std::string& path);
+
 class InputError : public std::runtime_error {
   public:
-    // Renders "FILE: PATH: MESSAGE" (or "FILE: MESSAGE" when path is empty).
+    // Renders "FILE: PATH: MESSAGE" (or "FILE: MESSAGE" when path is empty),
+    // FILE through printable_path().
     InputError(const std::string& file, const std::string& json_path, const std::string& message);
 };
 

@@ -19,6 +19,7 @@
 #include <set>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 namespace impulse::harness {
@@ -552,8 +553,9 @@ void write_report(const std::string& dir, const std::vector<SceneCheck>& checks)
         throw InputError(dir, "", "cannot hold the report: it is not a directory");
     }
     const fs::path base(dir);
-    write_file_atomically((base / "summary.md").string(), summary_markdown(checks));
-
+    // Written only when no path is refused (a link, a FIFO): never half new.
+    std::vector<std::pair<std::string, std::string>> files;
+    files.emplace_back((base / "summary.md").string(), summary_markdown(checks));
     const Counts c = count(checks);
     const bool all_passed = c.failed == 0 && c.errors == 0;
     const std::vector<std::string> stems = file_stems(checks);
@@ -581,12 +583,18 @@ void write_report(const std::string& dir, const std::vector<SceneCheck>& checks)
         const std::string picture = picture_of(checks[i]);
         const bool picture_file = !picture.empty() && checks[i].status == Status::failed;
         if (picture_file) {
-            write_file_atomically((base / (stems[i] + ".svg")).string(), picture);
+            files.emplace_back((base / (stems[i] + ".svg")).string(), picture);
         }
         html_section(html, checks[i], stems[i], picture, picture_file);
     }
     html += "</body>\n</html>\n";
-    write_file_atomically((base / "index.html").string(), html);
+    files.emplace_back((base / "index.html").string(), html);
+    for (const auto& [path, content] : files) {
+        require_regular_or_missing(path);
+    }
+    for (const auto& [path, content] : files) {
+        write_file_atomically(path, content);
+    }
 }
 
 } // namespace impulse::harness

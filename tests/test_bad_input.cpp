@@ -8,6 +8,7 @@
 // messages one by one; these run the built `impulse` as a user does and check
 // the contract around them: exit code, one sentence, nothing written.
 #include "tool_process.h"
+#include "utf8.h"
 
 #include <catch2/catch.hpp>
 #include <cerrno>
@@ -27,6 +28,7 @@
 
 namespace fs = std::filesystem;
 using impulse::test::start_tool;
+using impulse::test::valid_utf8;
 using impulse::test::wait_for;
 
 namespace {
@@ -128,28 +130,6 @@ std::size_t count_of(const std::string& text, const std::string& part) {
         ++n;
     }
     return n;
-}
-
-bool valid_utf8(const std::string& text) {
-    std::size_t i = 0;
-    while (i < text.size()) {
-        const auto c = static_cast<unsigned char>(text[i]);
-        const std::size_t length = c < 0x80           ? 1
-                                   : (c >> 5) == 0x6  ? 2
-                                   : (c >> 4) == 0xE  ? 3
-                                   : (c >> 3) == 0x1E ? 4
-                                                      : 0;
-        if (length == 0 || i + length > text.size()) {
-            return false;
-        }
-        for (std::size_t k = 1; k < length; ++k) {
-            if ((static_cast<unsigned char>(text[i + k]) & 0xC0U) != 0x80U) {
-                return false;
-            }
-        }
-        i += length;
-    }
-    return true;
 }
 
 // What a crash, an escaped exception or a sanitizer report prints.

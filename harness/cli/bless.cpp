@@ -35,10 +35,11 @@ that could not be written.
 void report(const Blessing& b, std::ostream& out) {
     switch (b.outcome) {
     case Blessing::Outcome::created:
-        out << "  new        " << b.name << " -> " << b.golden_file << "\n";
+        out << "  new        " << b.name << " -> " << printable_path(b.golden_file) << "\n";
         break;
     case Blessing::Outcome::changed:
-        out << "  changed    " << b.name << " -> " << b.golden_file << "\n" << b.summary;
+        out << "  changed    " << b.name << " -> " << printable_path(b.golden_file) << "\n"
+            << b.summary;
         break;
     case Blessing::Outcome::unchanged:
         out << "  unchanged  " << b.name << "\n";
@@ -110,9 +111,10 @@ int bless_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
         if (a.has_flag("--prune")) {
             std::filesystem::remove(golden);
             ++removed;
-            out << "  removed    " << golden << "\n";
+            out << "  removed    " << printable_path(golden) << "\n";
         } else {
-            out << "  unreferenced " << golden << " (no scene of that name; --prune deletes it)\n";
+            out << "  unreferenced " << printable_path(golden)
+                << " (no scene of that name; --prune deletes it)\n";
         }
     }
     out << "goldens: " << created << " new, " << changed << " changed, " << unchanged

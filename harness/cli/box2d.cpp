@@ -8,6 +8,7 @@
 #include "gate.h"
 #include "input_error.h"
 #include "observables.h"
+#include "output_path.h"
 #include "progress.h"
 #include "run.h"
 #include "simulator.h"
@@ -24,6 +25,7 @@
 #include <ostream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace impulse::harness::cli {
@@ -53,6 +55,7 @@ runs are compared up to its last complete step, and the output says so.
   --json                       the comparison as JSON, for scripts
   --out DIR                    also write both runs as trajectories, DIR/NAME.impulse.json
                                and DIR/NAME.box2d.json, for impulse diff and render
+                               (regular files only; never into goldens/)
   --dt S                       time step of both runs, in seconds
   --substeps N                 Box2D steps per scene step (scene's box2d.substeps, default 1)
   --velocity-iterations N      Box2D's velocity iterations (default 8)
@@ -392,6 +395,27 @@ std::string write_json(const std::vector<Comparison>& comparisons, const Options
     document["scenes"] = std::move(scenes);
     return document.dump(2) + "\n";
 }
+
+// Both runs of every scene into dir; nothing is written when one of the
+// paths is refused (a link, a FIFO), so the folder is never half new.
+void write_runs(const std::string& dir, const std::vector<Comparison>& comparisons) {
+    std::error_code error;
+    std::filesystem::create_directories(dir, error);
+    std::vector<std::pair<std::string, std::string>> files;
+    for (const Comparison& c : comparisons) {
+        if (c.impulse_run && c.box2d_run) {
+            const std::string base = (std::filesystem::path(dir) / c.name).string();
+            files.emplace_back(base + ".impulse.json", write_trajectory(*c.impulse_run));
+            files.emplace_back(base + ".box2d.json", write_trajectory(*c.box2d_run));
+        }
+    }
+    for (const auto& [path, content] : files) {
+        require_regular_or_missing(path);
+    }
+    for (const auto& [path, content] : files) {
+        write_file_atomically(path, content);
+    }
+}
 #endif // IMPULSE_WITH_BOX2D
 
 } // namespace
@@ -427,6 +451,9 @@ int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
 #else
     GateRoot root;
     root.root = a.option("--root").value_or(".");
+    if (const auto dir = a.option("--out")) {
+        check_output_folder("--out", *dir, goldens_folders(root.root));
+    }
     std::vector<std::string> paths = scenes_named(root, a.positional);
     // Everything is computed before anything is written: a bad scene or a
     // shape Box2D cannot take is one sentence on stderr, with no half output.
@@ -446,17 +473,7 @@ int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
         }
     }
     if (const auto dir = a.option("--out")) {
-        std::error_code error;
-        std::filesystem::create_directories(*dir, error);
-        for (const Comparison& c : comparisons) {
-            if (c.impulse_run && c.box2d_run) {
-                const std::filesystem::path base = std::filesystem::path(*dir) / c.name;
-                write_file_atomically(base.string() + ".impulse.json",
-                                      write_trajectory(*c.impulse_run));
-                write_file_atomically(base.string() + ".box2d.json",
-                                      write_trajectory(*c.box2d_run));
-            }
-        }
+        write_runs(*dir, comparisons);
     }
     if (a.has_flag("--json")) {
         out << write_json(comparisons, options);

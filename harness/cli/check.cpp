@@ -1,9 +1,9 @@
 // `impulse check [SCENE...]`: the gate.
-#include "atomic_file.h"
 #include "cli.h"
 #include "gate.h"
 #include "input_error.h"
 #include "number_format.h"
+#include "output_path.h"
 #include "progress.h"
 #include "tolerance.h"
 
@@ -36,7 +36,8 @@ golden matches.
   --rtol SPEC       channels: position, angle, velocity, angular_velocity,
   --ulp SPEC          impulse, event_time
   --junit FILE      JUnit XML: one testcase per scene, <failure> for a physics
-                    mismatch, <error> for a broken input or golden
+                    mismatch, <error> for a broken input or golden; - writes it
+                    to standard output (the table then goes to standard error)
   --report DIR      summary.md (for a pull request) and index.html with pictures
   -j N, --jobs N    check N scenes at once (results identical to -j 1)
   --shard K/N       only the scenes of shard K of N (a scene's shard depends on
@@ -45,7 +46,8 @@ golden matches.
                     is a terminal, after about a second of work)
 
 CI mode (CI set to anything but empty, 0 or false): a golden without a scene
-fails too. check never writes to goldens/.
+fails too. check never writes to goldens/: --junit and --report are refused
+there, as is any path that is not a regular file (a link, FIFO, device).
 The golden's engine and solver block are compared too: other settings or
 another engine fail; another version of the same engine is a warning.
 Exit: 0 all held, 1 a diff, a stale golden, other settings or a failed
@@ -130,11 +132,12 @@ void add_unreferenced_goldens(const GateRoot& root, bool ci, std::vector<SceneCh
             orphan.name = std::filesystem::path(golden).stem().string();
             orphan.golden_file = golden;
             orphan.status = SceneCheck::Status::failed;
-            orphan.message = golden + ": unreferenced golden: no canonical scene is named '" +
-                             orphan.name + "'; delete it with scripts/regen-goldens --prune";
+            orphan.message = printable_path(golden) +
+                             ": unreferenced golden: no canonical scene is named '" + orphan.name +
+                             "'; delete it with scripts/regen-goldens --prune";
             checks.push_back(orphan);
         } else {
-            err << "warning: " << golden
+            err << "warning: " << printable_path(golden)
                 << ": unreferenced golden (no scene of that name); scripts/regen-goldens "
                    "--prune deletes it, CI fails on it\n";
         }
@@ -145,7 +148,7 @@ void add_unreferenced_goldens(const GateRoot& root, bool ci, std::vector<SceneCh
 void print_warnings(const std::vector<SceneCheck>& checks, std::ostream& err) {
     for (const SceneCheck& c : checks) {
         for (const std::string& warning : c.warnings) {
-            err << "warning: " << c.golden_file << ": " << warning << "\n";
+            err << "warning: " << printable_path(c.golden_file) << ": " << warning << "\n";
         }
     }
 }
@@ -162,6 +165,40 @@ std::vector<SceneCheck> check_with_progress(const GateRoot& root,
     };
     options.on_done = [&progress] { progress.advance(); };
     return check_scenes(root, paths, options);
+}
+
+// The table (one row per scene), the details of each failure, the counts;
+// returns the exit code they mean.
+int print_table(std::ostream& out, const std::vector<SceneCheck>& checks) {
+    std::size_t width = 4;
+    for (const SceneCheck& c : checks) {
+        width = std::max(width, c.name.size());
+    }
+    int passed = 0, failed = 0, errors = 0;
+    for (const SceneCheck& c : checks) {
+        out << "  " << std::left << std::setw(7) << status_word(c.status)
+            << std::setw(static_cast<int>(width) + 2) << printable_path(c.name);
+        if (c.status == SceneCheck::Status::passed) {
+            ++passed;
+            out << std::fixed << std::setprecision(3) << c.seconds << " s\n";
+            out.unsetf(std::ios::fixed);
+        } else {
+            (c.status == SceneCheck::Status::failed ? failed : errors) += 1;
+            out << c.message << "\n";
+        }
+    }
+    for (const SceneCheck& c : checks) {
+        if (!c.details.empty()) {
+            out << "\n"
+                << printable_path(c.name) << " (" << printable_path(c.scene_file) << " vs "
+                << printable_path(c.golden_file) << "):\n"
+                << c.details;
+        }
+    }
+    out << checks.size() << " scene" << (checks.size() == 1 ? "" : "s") << ": " << passed
+        << " passed, " << failed << " failed, " << errors << " error" << (errors == 1 ? "" : "s")
+        << "\n";
+    return errors > 0 ? exit_bad_input : failed > 0 ? exit_failed : exit_ok;
 }
 
 } // namespace
@@ -189,6 +226,16 @@ int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostr
     if (const auto jobs = a.option("--jobs")) {
         options.jobs = parse_count("--jobs", *jobs, 1);
     }
+    // Output paths are refused before any scene runs.
+    const std::vector<std::string> goldens = goldens_folders(root.root);
+    const std::optional<std::string> junit = a.option("--junit");
+    if (junit) {
+        check_output_file("--junit", *junit, goldens);
+    }
+    if (const auto dir = a.option("--report")) {
+        check_output_folder("--report", *dir, goldens);
+    }
+    const bool junit_to_stdout = junit && is_standard_output(*junit);
     const bool all = a.positional.empty();
     std::vector<std::string> paths = scenes_named(root, a.positional);
     if (const auto spec = a.option("--shard")) {
@@ -196,10 +243,12 @@ int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostr
         paths = shard(paths, k, n);
     }
 
+    // With --junit -, standard output is the XML alone.
+    std::ostream& table = junit_to_stdout ? err : out;
     const bool ci = ci_mode();
-    out << "check: " << paths.size() << " scene" << (paths.size() == 1 ? "" : "s") << ", "
-        << (options.tolerance_mode ? "within tolerances" : "exact") << (ci ? ", CI mode" : "")
-        << "\n";
+    table << "check: " << paths.size() << " scene" << (paths.size() == 1 ? "" : "s") << ", "
+          << (options.tolerance_mode ? "within tolerances" : "exact") << (ci ? ", CI mode" : "")
+          << "\n";
     std::vector<SceneCheck> checks =
         check_with_progress(root, paths, options, a.has_flag("--quiet"));
 
@@ -208,42 +257,16 @@ int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostr
     }
     print_warnings(checks, err);
 
-    std::size_t width = 4;
-    for (const SceneCheck& c : checks) {
-        width = std::max(width, c.name.size());
-    }
-    int passed = 0, failed = 0, errors = 0;
-    for (const SceneCheck& c : checks) {
-        out << "  " << std::left << std::setw(7) << status_word(c.status)
-            << std::setw(static_cast<int>(width) + 2) << c.name;
-        if (c.status == SceneCheck::Status::passed) {
-            ++passed;
-            out << std::fixed << std::setprecision(3) << c.seconds << " s\n";
-            out.unsetf(std::ios::fixed);
-        } else {
-            (c.status == SceneCheck::Status::failed ? failed : errors) += 1;
-            out << c.message << "\n";
-        }
-    }
-    for (const SceneCheck& c : checks) {
-        if (!c.details.empty()) {
-            out << "\n"
-                << c.name << " (" << c.scene_file << " vs " << c.golden_file << "):\n"
-                << c.details;
-        }
-    }
-    out << checks.size() << " scene" << (checks.size() == 1 ? "" : "s") << ": " << passed
-        << " passed, " << failed << " failed, " << errors << " error" << (errors == 1 ? "" : "s")
-        << "\n";
-
-    if (const auto junit = a.option("--junit")) {
-        write_file_atomically(*junit, junit_xml(checks));
+    const int code = print_table(table, checks);
+    if (junit) {
+        write_output_file("--junit", *junit, junit_xml(checks), goldens, out);
     }
     if (const auto dir = a.option("--report")) {
         write_report(*dir, checks);
-        out << "report: " << *dir << "/summary.md, " << *dir << "/index.html\n";
+        table << "report: " << printable_path(*dir) << "/summary.md, " << printable_path(*dir)
+              << "/index.html\n";
     }
-    return errors > 0 ? exit_bad_input : failed > 0 ? exit_failed : exit_ok;
+    return code;
 }
 
 } // namespace impulse::harness::cli

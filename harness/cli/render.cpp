@@ -4,6 +4,7 @@
 #include "atomic_file.h"
 #include "cli.h"
 #include "input_error.h"
+#include "output_path.h"
 #include "progress.h"
 #include "run.h"
 
@@ -31,6 +32,7 @@ The file's "schema" decides what it is:
                         otherwise only paths, contact points and normals
 
   --out FILE.svg   write the picture here (atomically) instead of standard output
+                   (a regular file, never one in goldens/; - is standard output)
   --root DIR       where harness/scenes/ is (default: the current directory)
   --quiet          no progress bar (drawn on standard error only when that is a
                    terminal, after about a second of work)
@@ -85,6 +87,10 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
                          std::to_string(a.positional.size()));
     }
     const std::string& input = a.positional.front();
+    const std::vector<std::string> goldens = goldens_folders(a.option("--root").value_or("."));
+    if (const auto path = a.option("--out")) {
+        check_output_file("--out", *path, goldens);
+    }
     const std::string text = read_trajectory_text(input, "a trajectory to draw");
     const std::string schema = schema_of(text, input);
 
@@ -140,11 +146,7 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
     }
 
     progress.reset();
-    if (const auto path = a.option("--out")) {
-        write_file_atomically(*path, svg);
-    } else {
-        out << svg;
-    }
+    write_output_file("--out", a.option("--out").value_or(standard_output), svg, goldens, out);
     return exit_ok;
 }
 

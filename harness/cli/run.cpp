@@ -1,10 +1,10 @@
 // `impulse run SCENE`: simulate one scene and write its trajectory.
 #include "run.h"
 
-#include "atomic_file.h"
 #include "cli.h"
 #include "expectations.h"
 #include "number_format.h"
+#include "output_path.h"
 #include "progress.h"
 
 #include <ostream>
@@ -18,7 +18,8 @@ constexpr const char* run_help =
 Simulates SCENE (a path to an impulse/scene@1 file) with the impulse engine and
 writes its impulse/trajectory@1 to FILE (atomically) or to standard output.
 
-  --out FILE            write the trajectory here instead of standard output
+  --out FILE            write the trajectory here instead of standard output (a
+                        regular file, never one in goldens/; - is standard output)
   --dt S                time step in seconds (overrides the scene's dt)
   --integrator NAME     euler, symplectic-euler, verlet or rk4
   --toi-tolerance S     time-of-impact tolerance in seconds
@@ -57,6 +58,10 @@ int run_verb(const std::vector<std::string>& args, std::ostream& out, std::ostre
         overrides.integrator = integrator;
     }
 
+    const std::vector<std::string> goldens = goldens_folders(".");
+    if (const auto path = a.option("--out")) {
+        check_output_file("--out", *path, goldens);
+    }
     const Scene scene = load_scene(a.positional.front());
     for (const std::string& warning : scene.warnings) {
         err << "warning: " << warning << "\n";
@@ -68,11 +73,7 @@ int run_verb(const std::vector<std::string>& args, std::ostream& out, std::ostre
     const std::string text = write_trajectory(trajectory);
     // Nothing that diff, check or render would refuse, on a file or on stdout.
     require_readable_size(text, a.option("--out").value_or("standard output"));
-    if (const auto path = a.option("--out")) {
-        write_file_atomically(*path, text);
-    } else {
-        out << text;
-    }
+    write_output_file("--out", a.option("--out").value_or(standard_output), text, goldens, out);
     // The scene's declared answers are checked on every run, overrides included:
     // a coarser dt that breaks an exact answer is worth knowing.
     int failed = 0;

@@ -2,11 +2,11 @@
 // table, JSON, CSV and an SVG plot of error against cost.
 #include "sweep.h"
 
-#include "atomic_file.h"
 #include "cli.h"
 #include "gate.h"
 #include "input_error.h"
 #include "number_format.h"
+#include "output_path.h"
 #include "progress.h"
 #include "render.h"
 
@@ -68,7 +68,8 @@ together) dominating every point of Box2D's.
   --repeats N               timed runs per grid point (default 5)
   --json                    the sweep as JSON on standard output
   --csv                     the sweep as CSV on standard output
-  --svg FILE                an SVG plot of error against cost (log axes) with the fronts
+  --svg FILE                an SVG plot of error against cost (log axes) with the fronts;
+                            - is standard output (the table then goes to standard error)
   --progress                a line per point on standard error, even when it is not a
                             terminal
   --quiet                   no progress bar (drawn on standard error only when that is a
@@ -644,12 +645,16 @@ int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
     if (a.positional.size() != 1) {
         throw UsageError("needs exactly one SCENE, got " + std::to_string(a.positional.size()));
     }
-    if (a.has_flag("--json") && a.has_flag("--csv")) {
-        throw UsageError("--json and --csv cannot be combined");
+    const std::string svg = a.option("--svg").value_or("");
+    if (a.has_flag("--json") + a.has_flag("--csv") + is_standard_output(svg) > 1) {
+        throw UsageError("--json, --csv and --svg - all write to standard output: give one");
     }
     GateRoot root;
     if (const auto dir = a.option("--root")) {
         root.root = *dir;
+    }
+    if (!svg.empty()) {
+        check_output_file("--svg", svg, goldens_folders(root.root));
     }
     const Scene scene = load_scene(resolve_scene(root, a.positional.front()));
     for (const std::string& warning : scene.warnings) {
@@ -681,15 +686,15 @@ int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
         }
         return run_sweep(scene, config, progress);
     }();
-    if (const auto path = a.option("--svg")) {
-        write_file_atomically(*path, sweep_svg(result));
+    if (!svg.empty()) {
+        write_output_file("--svg", svg, sweep_svg(result), goldens_folders(root.root), out);
     }
     if (a.has_flag("--json")) {
         out << to_json(result).dump(2) << "\n";
     } else if (a.has_flag("--csv")) {
         write_csv(result, out);
     } else {
-        write_table(result, out);
+        write_table(result, is_standard_output(svg) ? err : out);
     }
     return exit_ok;
 }
