@@ -1,9 +1,9 @@
-#include "simultaneous_contact.h"
+#include "contact_simultaneous.h"
 
 #include "contact_problem.h"
+#include "contact_resting.h"
 #include "lcp.h"
 #include "manifold.h"
-#include "resting_contact.h"
 #include "restitution.h"
 
 #include <cstddef>

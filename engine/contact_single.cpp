@@ -1,7 +1,7 @@
-#include "single_contact.h"
+#include "contact_single.h"
 
+#include "contact_resting.h"
 #include "manifold.h"
-#include "resting_contact.h"
 #include "restitution.h"
 
 namespace impulse {
