@@ -1,7 +1,7 @@
 #include "configuration.h"
 
 #include "integrator.h"
-#include "pair_separation.h"
+#include "narrow_phase_query.h"
 
 namespace impulse {
 

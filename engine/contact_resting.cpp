@@ -3,7 +3,7 @@
 #include "contact_problem.h"
 #include "lcp.h"
 #include "manifold.h"
-#include "pair_separation.h"
+#include "narrow_phase_query.h"
 #include "restitution.h"
 #include "world.h"
 
@@ -50,6 +50,7 @@ std::vector<ContactPoint> resting_points(World& world) {
         if (pair_separation(world, pair, xa, xb) > tolerance) {
             continue;
         }
+        // The points of the pair just measured: one query with its separation.
         const Manifold m = collide(a.shape, xa, b.shape, xb, tolerance, world.solver.vertex_normal);
         // Resting: no point approaches faster than v_rest (faster is a
         // collision) and none separates faster than v_hold (faster must be

@@ -1,7 +1,7 @@
 #include "continuous_collision.h"
 
 #include "integrator.h"
-#include "pair_separation.h"
+#include "narrow_phase_query.h"
 
 #include <limits>
 

@@ -2,7 +2,7 @@
 
 #include "contact_single.h"
 #include "integrator.h"
-#include "pair_separation.h"
+#include "narrow_phase_query.h"
 #include "time_of_impact.h"
 
 #include <algorithm>

@@ -8,7 +8,7 @@
 #pragma once
 
 #include "integrator.h"
-#include "pair_separation.h"
+#include "narrow_phase_query.h"
 #include "time_of_impact.h"
 
 namespace impulse {

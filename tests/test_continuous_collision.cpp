@@ -7,7 +7,7 @@
 #include "continuous_collision.h"
 #include "integrator.h"
 #include "manifold.h"
-#include "pair_separation.h"
+#include "narrow_phase_query.h"
 #include "support.h"
 
 #include <catch2/catch.hpp>
