@@ -13,7 +13,7 @@ struct BodyState {
     double angular_velocity = 0.0;
 };
 
-// Static bodies have inv_mass = inv_inertia = 0 (infinite mass, PHYSICS.md);
+// Static bodies have inv_mass = inv_inertia = 0 (infinite mass, docs/physics.md);
 // non-rotating dynamic bodies have inv_inertia = 0 (infinite inertia).
 struct Body {
     BodyState state;

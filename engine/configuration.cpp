@@ -1,7 +1,7 @@
 #include "configuration.h"
 
 #include "integrator.h"
-#include "manifold.h"
+#include "narrow_phase_query.h"
 
 namespace impulse {
 
@@ -46,13 +46,6 @@ double interpenetration_floor(const World& world, std::size_t p) {
                : 0.0;
 }
 
-double pair_separation(const World& world, const Configuration& configuration, const Pair& pair) {
-    const Body& a = world.bodies[pair.a];
-    const Body& b = world.bodies[pair.b];
-    return separation(a.shape, transform_of(configuration[pair.a]), b.shape,
-                      transform_of(configuration[pair.b]));
-}
-
 int first_interpenetrating_pair(World& world, const Configuration& configuration) {
     // Each body's rotation once per configuration, not once per pair it is in.
     std::vector<Transform>& xf = world.scratch_transforms;
@@ -61,10 +54,10 @@ int first_interpenetrating_pair(World& world, const Configuration& configuration
         xf[i] = transform_of(configuration[i]);
     }
     for (std::size_t p = 0; p < world.pairs.size(); ++p) {
-        ++world.work.narrow_phase_queries;
         const Pair& pair = world.pairs[p];
-        if (separation(world.bodies[pair.a].shape, xf[pair.a], world.bodies[pair.b].shape,
-                       xf[pair.b]) < interpenetration_floor(world, p)) {
+        if (pair_separation(world, pair, xf[static_cast<std::size_t>(pair.a)],
+                            xf[static_cast<std::size_t>(pair.b)]) <
+            interpenetration_floor(world, p)) {
             return static_cast<int>(p);
         }
     }

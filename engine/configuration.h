@@ -26,8 +26,6 @@ void advance_all(World& world, const Configuration& from, double h, Configuratio
 // beyond -contact_tolerance (rounding may sink it by a few ULPs).
 double interpenetration_floor(const World& world, std::size_t p);
 
-double pair_separation(const World& world, const Configuration& configuration, const Pair& pair);
-
 // Index into world.pairs of the first interpenetrating pair, or -1.
 int first_interpenetrating_pair(World& world, const Configuration& configuration);
 

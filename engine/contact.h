@@ -6,7 +6,7 @@
 namespace impulse {
 
 // Convention, stated once: the normal n is a unit vector pointing toward body A
-// (Hecker; PHYSICS.md, Notation). separation is the signed gap along n at the
+// (Hecker; docs/physics.md, Notation). separation is the signed gap along n at the
 // contact point: negative when the bodies interpenetrate.
 struct Contact {
     Vec2 point;

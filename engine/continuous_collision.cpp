@@ -1,7 +1,7 @@
 #include "continuous_collision.h"
 
 #include "integrator.h"
-#include "manifold.h"
+#include "narrow_phase_query.h"
 
 #include <limits>
 
@@ -20,12 +20,6 @@ Acceleration acceleration_of(const World& world, std::size_t i) {
         return world.resting_contacts.accelerations[i];
     }
     return {world.gravity, 0.0};
-}
-
-double separation_of(World& world, const Pair& pair, const BodyState& a, const BodyState& b) {
-    ++world.work.narrow_phase_queries;
-    return separation(world.bodies[static_cast<std::size_t>(pair.a)].shape, transform_of(a),
-                      world.bodies[static_cast<std::size_t>(pair.b)].shape, transform_of(b));
 }
 
 // ---------------------------------------------------------------- the bounds
@@ -261,7 +255,7 @@ PairSweep sweep_pair(World& world, const Configuration& start, std::size_t p, do
     BodyState at_a = start[ia];
     BodyState at_b = start[ib];
     double u = 0.0;
-    double s = separation_of(world, pair, at_a, at_b);
+    double s = pair_separation(world, pair, at_a, at_b);
     int samples = 1;
     for (;;) {
         double next = u + safe_advance(world, pair, motion, u, s, floor, at_a, at_b, end);
@@ -272,12 +266,12 @@ PairSweep sweep_pair(World& world, const Configuration& start, std::size_t p, do
             }
             next = end;
         }
-        if (samples >= world.solver.max_halvings) {
+        if (samples >= world.solver.max_search_iterations) {
             return {PairSweep::Outcome::stalled, u};
         }
         at_a = advance_body(world, ia, start[ia], next);
         at_b = advance_body(world, ib, start[ib], next);
-        s = separation_of(world, pair, at_a, at_b);
+        s = pair_separation(world, pair, at_a, at_b);
         ++samples;
         if (s < floor) {
             return {PairSweep::Outcome::found, next};

@@ -15,7 +15,7 @@ namespace impulse {
 struct SweptContact {
     int pair = -1;         // index into world.pairs of the pair found interpenetrating, or -1: none
     double time = 0;       // when, after `start`: a sample at which it interpenetrates
-    bool converged = true; // false: a pair needed more than solver.max_halvings samples
+    bool converged = true; // false: a pair needed more than solver.max_search_iterations samples
     int stalled_pair = -1; // then, which one
 };
 
@@ -27,7 +27,7 @@ struct SweptContact {
 // cannot interpenetrate by more than solver.contact_tolerance past that test,
 // so nothing passes through anything unseen. Each sample is one narrow-phase
 // query and one body advance per dynamic body of its pair. Not converged when
-// a pair needed more than solver.max_halvings samples before the earliest
+// a pair needed more than solver.max_search_iterations samples before the earliest
 // contact found (a pair that stalls only later does not matter: the step
 // resolves that contact first and sweeps again from there).
 SweptContact first_swept_contact(World& world, const Configuration& start, double h);

@@ -1,8 +1,8 @@
 #include "local_stepping.h"
 
+#include "contact_single.h"
 #include "integrator.h"
-#include "manifold.h"
-#include "single_contact.h"
+#include "narrow_phase_query.h"
 #include "time_of_impact.h"
 
 #include <algorithm>
@@ -131,9 +131,7 @@ class LocalStep {
     void test_pair(const Pair& pair) {
         const BodyClock& ca = clock(pair.a);
         const BodyClock& cb = clock(pair.b);
-        ++world_.work.narrow_phase_queries;
-        const double s_end =
-            separation(body(pair.a).shape, ca.end_pose, body(pair.b).shape, cb.end_pose);
+        const double s_end = pair_separation(world_, pair, ca.end_pose, cb.end_pose);
         if (!(s_end < 0.0)) {
             return;
         }

@@ -173,25 +173,16 @@ void vertex_vertex(const WorldPolygon& a, const WorldPolygon& b, bool reference_
     m.points[0] = {0.5 * (va + vb), *n, dot(*n, va - vb)};
 }
 
-Manifold collide_polygons(const WorldPolygon& a, const WorldPolygon& b, double contact_tolerance,
-                          VertexNormal vertex_normal) {
-    const FaceSeparation face_a = max_face_separation(a, b);
-    const FaceSeparation face_b = max_face_separation(b, a);
+// The incident polygon's points that may touch the reference face: its
+// incident edge clipped to the face's extent.
+struct IncidentPoints {
+    Vec2 points[2];
+    int count = 0;
+    bool missed = false; // the edges miss each other sideways: the deepest vertex
+};
 
-    Manifold m;
-    const bool reference_is_a =
-        face_a.separation > face_b.separation + reference_face_bias * contact_tolerance;
-    const WorldPolygon& ref = reference_is_a ? a : b;
-    const WorldPolygon& inc = reference_is_a ? b : a;
-    const int ref_edge = reference_is_a ? face_a.edge : face_b.edge;
-    m.separation = reference_is_a ? face_a.separation : face_b.separation;
+IncidentPoints incident_points(const WorldPolygon& ref, const WorldPolygon& inc, int ref_edge) {
     const Vec2 ref_n = ref.normals[ref_edge];
-    m.normal = reference_is_a ? -ref_n : ref_n; // toward A
-
-    if (m.separation > contact_tolerance) {
-        return m;
-    }
-
     // Incident edge: the edge of the other polygon facing the reference face most directly.
     int inc_edge = 0;
     double most_opposed = 1e300;
@@ -226,14 +217,12 @@ Manifold collide_polygons(const WorldPolygon& a, const WorldPolygon& b, double c
         t_end = 0.0;
     }
 
-    Vec2 candidates[2];
-    int candidate_count = 0;
+    IncidentPoints r;
+    r.missed = t_begin > t_end;
     if (t_begin <= t_end) {
-        candidates[candidate_count++] =
-            t_begin == 0.0 ? seg[0] : seg[0] + t_begin * (seg[1] - seg[0]);
+        r.points[r.count++] = t_begin == 0.0 ? seg[0] : seg[0] + t_begin * (seg[1] - seg[0]);
         if (t_end > t_begin) {
-            candidates[candidate_count++] =
-                t_end == 1.0 ? seg[1] : seg[0] + t_end * (seg[1] - seg[0]);
+            r.points[r.count++] = t_end == 1.0 ? seg[1] : seg[0] + t_end * (seg[1] - seg[0]);
         }
     } else {
         // The edges miss each other sideways (corner against corner): fall back
@@ -244,20 +233,44 @@ Manifold collide_polygons(const WorldPolygon& a, const WorldPolygon& b, double c
                 deepest = i;
             }
         }
-        candidates[candidate_count++] = inc.vertices[deepest];
+        r.points[r.count++] = inc.vertices[deepest];
+    }
+    return r;
+}
+
+Manifold collide_polygons(const WorldPolygon& a, const WorldPolygon& b, double contact_tolerance,
+                          VertexNormal vertex_normal) {
+    const FaceSeparation face_a = max_face_separation(a, b);
+    const FaceSeparation face_b = max_face_separation(b, a);
+
+    Manifold m;
+    const bool reference_is_a =
+        face_a.separation > face_b.separation + reference_face_bias * contact_tolerance;
+    const WorldPolygon& ref = reference_is_a ? a : b;
+    const WorldPolygon& inc = reference_is_a ? b : a;
+    const int ref_edge = reference_is_a ? face_a.edge : face_b.edge;
+    m.separation = reference_is_a ? face_a.separation : face_b.separation;
+    const Vec2 ref_n = ref.normals[ref_edge];
+    m.normal = reference_is_a ? -ref_n : ref_n; // toward A
+
+    if (m.separation > contact_tolerance) {
+        return m;
     }
 
-    Vec2 kept[2]; // the candidates behind m.points
-    for (int i = 0; i < candidate_count; ++i) {
-        const double s = dot(ref_n, candidates[i] - r1);
+    const IncidentPoints incident = incident_points(ref, inc, ref_edge);
+    const Vec2 r1 = ref.vertices[ref_edge];
+
+    Vec2 kept[2]; // the incident points behind m.points
+    for (int i = 0; i < incident.count; ++i) {
+        const double s = dot(ref_n, incident.points[i] - r1);
         if (s <= contact_tolerance) {
-            kept[m.point_count] = candidates[i];
+            kept[m.point_count] = incident.points[i];
             // The point halfway between the incident vertex and the reference face.
-            m.points[m.point_count++] = {candidates[i] - (0.5 * s) * ref_n, m.normal, s};
+            m.points[m.point_count++] = {incident.points[i] - (0.5 * s) * ref_n, m.normal, s};
         }
     }
     if (vertex_normal == VertexNormal::bisector && m.point_count > 0) {
-        vertex_vertex(a, b, reference_is_a, ref_edge, kept, t_begin > t_end, contact_tolerance, m);
+        vertex_vertex(a, b, reference_is_a, ref_edge, kept, incident.missed, contact_tolerance, m);
     }
     return m;
 }

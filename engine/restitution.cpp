@@ -10,7 +10,8 @@ double relative_normal_velocity(const Body& a, const Body& b, Vec2 P, Vec2 n) {
 }
 
 double impulse_magnitude(const Body& a, const Body& b, Vec2 P, Vec2 n, double e, double vn) {
-    double k = dot(n, n) * (a.inv_mass + b.inv_mass); // Eq. 6 denominator
+    // Eq. 6 (Eq. 5 solved for j) when neither body rotates: its denominator.
+    double k = dot(n, n) * (a.inv_mass + b.inv_mass);
     if (a.rotates() || b.rotates()) {
         // Eq. 9: each rotating body adds (perp(r) . n)^2 / I.
         const double rnA = dot(perp(P - a.state.position), n);
@@ -22,8 +23,8 @@ double impulse_magnitude(const Body& a, const Body& b, Vec2 P, Vec2 n, double e,
 
 void apply_impulse(Body& a, Body& b, Vec2 P, Vec2 n, double j) {
     const Vec2 jn = j * n;
-    a.state.velocity += a.inv_mass * jn; // Eq. 8a
-    b.state.velocity -= b.inv_mass * jn;
+    a.state.velocity += a.inv_mass * jn; // Eq. 4a, which Eq. 8a repeats for a rotating body
+    b.state.velocity -= b.inv_mass * jn; // Eq. 4b
     if (a.rotates()) {
         a.state.angular_velocity += dot(perp(P - a.state.position), jn) * a.inv_inertia; // Eq. 8b
     }

@@ -11,7 +11,7 @@ struct Rotation {
 };
 
 // Built with the engine's own sine and cosine (trig.h), never libm's, so the
-// same angle gives the same bits on every platform (DESIGN.md, Determinism rule 3).
+// same angle gives the same bits on every platform (docs/design.md, Determinism rule 3).
 Rotation rotation_of(double angle);
 
 constexpr Vec2 rotate(Rotation q, Vec2 v) {

@@ -1,4 +1,4 @@
-// How the engine models a scene (DESIGN.md, the solver table). Each variant is
+// How the engine models a scene (docs/design.md, the solver table). Each variant is
 // one enum value and one case where it is used; the seed's value comes first.
 #pragma once
 
@@ -53,7 +53,9 @@ struct SolverSettings {
     // (docs/engine.md, "Resting contact").
     bool resting = false;
     // Work bounds that turn a stall into a clear error instead of a hang.
-    int max_halvings = 200; // iterations per time-of-impact search, whatever the method
+    // Bounds every search the step makes: the bisection's halvings, the secant
+    // search's trials and ccd's samples of one pair's sweep.
+    int max_search_iterations = 200;
     int max_collisions_per_step = 4096;
 };
 

@@ -1,7 +1,9 @@
 // When does the first collision in a step happen? The seed's answer is a binary
-// search of the step (PHYSICS.md, "The simulation loop of the seed", item 2);
-// the secant search finds the same instant in fewer iterations. Each method is
-// one function here and one case in time_of_impact().
+// search of the step (docs/physics.md, "The simulation loop of the seed", item
+// 2; toi_bisection.cpp); the secant search finds the same instant in fewer
+// iterations (toi_secant.cpp). Each method is one function here and one case
+// in time_of_impact(), and one loop shared by the world search and local
+// stepping's search of one pair (toi_trials.h).
 #pragma once
 
 #include "configuration.h"
@@ -11,7 +13,7 @@ namespace impulse {
 struct TimeOfImpact {
     double time = 0.0; // seconds after the start: the latest instant known free of interpenetration
     int pair = -1;     // index into world.pairs of the pair interpenetrating just after it
-    int iterations = 0; // trial configurations integrated (halvings, for the bisection)
+    int iterations = 0; // trials integrated (halvings, for the bisection)
     bool converged = false;
 };
 
@@ -20,12 +22,14 @@ struct TimeOfImpact {
 // [lo, hi]: nothing interpenetrates at lo, the offending pair does at hi.
 // Converged means the bracket is at most solver.toi_tolerance wide and the
 // pair is within solver.contact_tolerance of touching at lo; the configuration
-// at the returned time lo is left in at_impact. At most solver.max_halvings
-// iterations, each counted in world.work.toi_iterations.
+// at the returned time lo is left in at_impact. At most
+// solver.max_search_iterations iterations, each counted in
+// world.work.toi_iterations; not converged (StepFailure::toi_not_converged)
+// when they run out or the bracket stops shrinking, whatever the method.
 TimeOfImpact time_of_impact(World& world, const Configuration& start, double h,
                             const Configuration& at_h, int pair_at_h, Configuration& at_impact);
 
-// The seed: halve the bracket until it converges.
+// The seed: halve the bracket until it converges (toi_bisection.cpp).
 TimeOfImpact bisect_time_of_impact(World& world, const Configuration& start, double h,
                                    int pair_at_h, Configuration& at_impact);
 
@@ -48,12 +52,6 @@ struct PairMotion {
     double offset_a = 0.0;
     double offset_b = 0.0;
 };
-
-// The pair's signed separation (one narrow-phase query).
-double pair_separation(World& world, const Pair& pair, const BodyState& a, const BodyState& b);
-
-// The pair's state u seconds into the search (one body advance per dynamic body).
-void pair_state_at(World& world, const PairMotion& motion, double u, BodyState& a, BodyState& b);
 
 // The same contract as time_of_impact() for one pair over [0, h], given its
 // separation s_h < 0 at h; `pair` in the result is unused (-1). The states at

@@ -3,7 +3,7 @@
 // instant free of interpenetration to within toi_tolerance, but puts each trial
 // where the chord through the bracket's ends crosses zero, on the signed
 // separation s(t) of the offending pair, instead of at the midpoint.
-#include "time_of_impact.h"
+#include "toi_trials.h"
 
 namespace impulse {
 
@@ -76,7 +76,7 @@ double next_trial(Bracket& b, double tolerance, int iterations_left) {
     // halving_window iterations (so every halving_window + 1 iterations at
     // least halve it), and when only enough iterations are left for the
     // bisection to finish (so this search converges whenever the bisection
-    // would within max_halvings).
+    // would within max_search_iterations).
     if (width <= tolerance || b.flat || width > 0.5 * b.widths[halving_window - 1] ||
         iterations_left <= halvings_needed(width, tolerance)) {
         return mid;
@@ -156,87 +156,59 @@ void change_pair(Bracket& b, double t, double s_lo, double s_t) {
     b = fresh;
 }
 
+// One loop for the world's trials and one pair's (toi_trials.h).
+template <class Trials>
+TimeOfImpact secant_search(World& world, Trials& trials, double h, double s_h) {
+    const SolverSettings& solver = world.solver;
+    TimeOfImpact toi;
+    Bracket b = bracket_for_pair(0.0, h, trials.separation_at_lo(), s_h);
+    for (;;) {
+        if (b.hi - b.lo <= solver.toi_tolerance && b.s_lo <= solver.contact_tolerance) {
+            toi.converged = true;
+            break;
+        }
+        const double t =
+            next_trial(b, solver.toi_tolerance, solver.max_search_iterations - toi.iterations);
+        // A bracket that no longer shrinks means the tolerance is below the
+        // spacing of doubles at this time: stop rather than loop forever.
+        if (toi.iterations == solver.max_search_iterations || t <= b.lo || t >= b.hi) {
+            break;
+        }
+        ++toi.iterations;
+        ++world.work.toi_iterations;
+        const SecantTrial trial = trials.secant_trial(t);
+        switch (trial.outcome) {
+        case SecantTrial::Outcome::free:
+            move_lo(b, t, trial.s);
+            break;
+        case SecantTrial::Outcome::hit:
+            move_hi(b, t, trial.s);
+            break;
+        case SecantTrial::Outcome::new_pair:
+            change_pair(b, t, trial.s_lo, trial.s);
+            break;
+        }
+    }
+    toi.time = b.lo;
+    toi.pair = trials.pair();
+    return toi;
+}
+
 } // namespace
 
 TimeOfImpact secant_time_of_impact(World& world, const Configuration& start, double h,
                                    const Configuration& at_h, int pair_at_h,
                                    Configuration& at_impact) {
-    const SolverSettings& solver = world.solver;
-    TimeOfImpact toi;
-    toi.pair = pair_at_h;
-    at_impact = start;
-    ++world.work.narrow_phase_queries; // s(h): the bisection never measures it
-    Bracket b = bracket_for_pair(0.0, h, pair_separation(world, start, world.pairs[toi.pair]),
-                                 pair_separation(world, at_h, world.pairs[toi.pair]));
-    Configuration trial;
-    for (;;) {
-        if (b.hi - b.lo <= solver.toi_tolerance && b.s_lo <= solver.contact_tolerance) {
-            toi.converged = true;
-            break;
-        }
-        const double t = next_trial(b, solver.toi_tolerance, solver.max_halvings - toi.iterations);
-        // A bracket that no longer shrinks means the tolerance is below the
-        // spacing of doubles at this time: stop rather than loop forever.
-        if (toi.iterations == solver.max_halvings || t <= b.lo || t >= b.hi) {
-            break;
-        }
-        ++toi.iterations;
-        ++world.work.toi_iterations;
-        // Like the seed, every trial is integrated from the step's start.
-        advance_all(world, start, t, trial);
-        const int pair = first_interpenetrating_pair(world, trial);
-        if (pair < 0) {
-            at_impact.swap(trial);
-            move_lo(b, t, pair_separation(world, at_impact, world.pairs[toi.pair]));
-            continue;
-        }
-        ++world.work.narrow_phase_queries; // s(t) of the pair found: the bisection needs no value
-        const double s_t = pair_separation(world, trial, world.pairs[pair]);
-        if (pair == toi.pair) {
-            move_hi(b, t, s_t);
-        } else {
-            toi.pair = pair;
-            ++world.work.narrow_phase_queries;
-            change_pair(b, t, pair_separation(world, at_impact, world.pairs[pair]), s_t);
-        }
-    }
-    toi.time = b.lo;
-    return toi;
+    WorldTrials trials(world, start, pair_at_h, at_impact);
+    // s(h): the bisection never needs it.
+    const double s_h = pair_separation(world, at_h, world.pairs[pair_at_h]);
+    return secant_search(world, trials, h, s_h);
 }
 
-// secant_time_of_impact() for one pair: the same bracket and trials; the pair
-// never changes, since no other pair is looked at.
 TimeOfImpact secant_pair_time_of_impact(World& world, const PairMotion& motion, double h,
                                         double s_h, BodyState& at_a, BodyState& at_b) {
-    const SolverSettings& solver = world.solver;
-    TimeOfImpact toi;
-    pair_state_at(world, motion, 0.0, at_a, at_b);
-    Bracket b = bracket_for_pair(0.0, h, pair_separation(world, motion.pair, at_a, at_b), s_h);
-    BodyState trial_a;
-    BodyState trial_b;
-    for (;;) {
-        if (b.hi - b.lo <= solver.toi_tolerance && b.s_lo <= solver.contact_tolerance) {
-            toi.converged = true;
-            break;
-        }
-        const double t = next_trial(b, solver.toi_tolerance, solver.max_halvings - toi.iterations);
-        if (toi.iterations == solver.max_halvings || t <= b.lo || t >= b.hi) {
-            break;
-        }
-        ++toi.iterations;
-        ++world.work.toi_iterations;
-        pair_state_at(world, motion, t, trial_a, trial_b);
-        const double s_t = pair_separation(world, motion.pair, trial_a, trial_b);
-        if (s_t < 0.0) {
-            move_hi(b, t, s_t);
-        } else {
-            at_a = trial_a;
-            at_b = trial_b;
-            move_lo(b, t, s_t);
-        }
-    }
-    toi.time = b.lo;
-    return toi;
+    PairTrials trials(world, motion, at_a, at_b);
+    return secant_search(world, trials, h, s_h);
 }
 
 } // namespace impulse

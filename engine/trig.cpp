@@ -36,8 +36,8 @@ constexpr double pio2_2t = 2.02226624879595063154e-21;  // 0x3BA3198A 2E037073, 
 constexpr double pio2_3 = 2.02226624871116645580e-21;   // 0x3BA3198A 2E000000, third 33 bits
 constexpr double pio2_3t = 8.47842766036889956997e-32;  // 0x397B839A 252049C1, rest after pio2_3
 
-// fdlibm's medium-range limit (~2^20 * pi/2): below it n < 2^20, so n * pio2_1 is exact. This
-// is wider than the 2^19 * pi/2 promised in trig.h.
+// fdlibm's medium-range limit (~2^20 * pi/2): below it n < 2^20, so n * pio2_1 is exact. The
+// accuracy trig.h states is tested only up to half of it, 2^19 * pi/2.
 constexpr double medium_limit = 0x1.921fbp+20;
 
 // Adding and subtracting 1.5 * 2^52 rounds a double below 2^51 to the nearest integer with

@@ -46,7 +46,7 @@ constexpr double dot(Vec2 a, Vec2 b) {
 constexpr double cross(Vec2 a, Vec2 b) {
     return a.x * b.y - a.y * b.x;
 }
-// perp(r) = (-r.y, r.x): r turned a quarter counter-clockwise (PHYSICS.md, Notation).
+// perp(r) = (-r.y, r.x): r turned a quarter counter-clockwise (docs/physics.md, Notation).
 constexpr Vec2 perp(Vec2 r) {
     return {-r.y, r.x};
 }

@@ -1,10 +1,10 @@
 #include "world.h"
 
 #include "configuration.h"
+#include "contact_simultaneous.h"
+#include "contact_single.h"
 #include "continuous_collision.h"
 #include "local_stepping.h"
-#include "simultaneous_contact.h"
-#include "single_contact.h"
 #include "time_of_impact.h"
 
 namespace impulse {

@@ -1,4 +1,4 @@
-// The world and its step: Hecker's simulation loop (PHYSICS.md, "The
+// The world and its step: Hecker's simulation loop (docs/physics.md, "The
 // simulation loop of the seed").
 #pragma once
 
@@ -6,7 +6,7 @@
 #include "body_clock.h"
 #include "broad_phase.h"
 #include "contact.h"
-#include "resting_contact.h"
+#include "contact_resting.h"
 #include "solver_settings.h"
 
 #include <optional>
@@ -68,12 +68,14 @@ World make_world(std::vector<Body> bodies, Vec2 gravity, double restitution,
                  const SolverSettings& solver);
 
 enum class StepFailure {
-    toi_not_converged,        // the bisection could not reach toi_tolerance
+    toi_not_converged,        // the time-of-impact search (bisection or secant) could not reach
+                              // toi_tolerance within solver.max_search_iterations trials
     too_many_collisions,      // more than solver.max_collisions_per_step within one step
                               // (local stepping: for one body)
     resting_contact,          // touching, interpenetrating next, yet not approaching
     contact_problem_unsolved, // contacts: simultaneous: the impulse LCP found no solution
-    sweep_not_converged,      // ccd: conservative advancement needed more than max_halvings steps
+    sweep_not_converged,      // ccd: conservative advancement needed more than
+                              // solver.max_search_iterations samples
 };
 
 struct StepError {

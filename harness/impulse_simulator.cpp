@@ -143,7 +143,8 @@ class ImpulseSimulator final : public Simulator {
             return "the time-of-impact search between " + a + " and " + b + " at " + at +
                    " did not reach solver.toi_tolerance = " +
                    format_double(scene_.solver.toi_tolerance) + " s within " +
-                   std::to_string(scene_.solver.max_halvings) + " iterations; raise the tolerance";
+                   std::to_string(scene_.solver.max_search_iterations) +
+                   " iterations; raise the tolerance";
         case StepFailure::too_many_collisions:
             return "more than " + std::to_string(scene_.solver.max_collisions_per_step) +
                    " collisions between " + a + " and " + b + " within one step at " + at +
@@ -159,7 +160,7 @@ class ImpulseSimulator final : public Simulator {
                    " contact\"); use contacts \"single\" for this scene";
         case StepFailure::sweep_not_converged:
             return "the swept test between " + a + " and " + b + " at " + at +
-                   " needed more than " + std::to_string(scene_.solver.max_halvings) +
+                   " needed more than " + std::to_string(scene_.solver.max_search_iterations) +
                    " advancement steps: the pair moves or spins too fast for its distance to"
                    " be bounded (a tunnel the engine cannot rule out); use a smaller dt";
         }

@@ -2,7 +2,7 @@
 // bouncing body's cascade ends at the exact t_inf within the stated bound and
 // the body then rests; bodies resting on bodies stay put; a body resting on a
 // frictionless slope slides with the exact acceleration g sin(theta).
-#include "resting_contact.h"
+#include "contact_resting.h"
 #include "support.h"
 #include "world.h"
 

@@ -1,7 +1,7 @@
 // Simultaneous contact (contacts: simultaneous) and its LCP solver, against
 // answers derived by hand (docs/engine.md, "Simultaneous contact").
+#include "contact_simultaneous.h"
 #include "lcp.h"
-#include "simultaneous_contact.h"
 #include "support.h"
 
 #include <catch2/catch.hpp>

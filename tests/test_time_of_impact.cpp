@@ -313,7 +313,7 @@ TEST_CASE("an impossible toi_tolerance ends in toi_not_converged, never a hang",
             CHECK(error->failure == StepFailure::toi_not_converged);
             CHECK(error->body_a == 1);
             CHECK(events.empty());
-            CHECK(world.work.toi_iterations <= solver.max_halvings);
+            CHECK(world.work.toi_iterations <= solver.max_search_iterations);
             // Left at the last configuration free of interpenetration, at the impact.
             CHECK(world.bodies[1].state.position.y >= 0.5);
             CHECK(std::fabs(error->time - 0.01) < 1e-12);
@@ -325,7 +325,7 @@ TEST_CASE("the iteration bound ends the secant search as it does the bisection",
     for (const TimeOfImpactMethod toi :
          {TimeOfImpactMethod::bisection, TimeOfImpactMethod::secant}) {
         SolverSettings solver = solver_with(Integrator::verlet, toi);
-        solver.max_halvings = 2;
+        solver.max_search_iterations = 2;
         World world = first_step_drop(solver);
         std::vector<CollisionEvent> events;
         const std::optional<StepError> error = step(world, 0.0, 1.0 / 60.0, events);

@@ -1,9 +1,9 @@
-#include "simultaneous_contact.h"
+#include "contact_simultaneous.h"
 
 #include "contact_problem.h"
+#include "contact_resting.h"
 #include "lcp.h"
-#include "manifold.h"
-#include "resting_contact.h"
+#include "narrow_phase_query.h"
 #include "restitution.h"
 
 #include <cstddef>
@@ -40,9 +40,7 @@ SimultaneousResult resolve_simultaneous_contacts(World& world, double time,
         const Pair& pair = world.pairs[p];
         const Body& a = world.bodies[static_cast<std::size_t>(pair.a)];
         const Body& b = world.bodies[static_cast<std::size_t>(pair.b)];
-        ++world.work.narrow_phase_queries;
-        const Manifold m = collide(a.shape, transform_of(a.state), b.shape, transform_of(b.state),
-                                   world.solver.contact_tolerance, world.solver.vertex_normal);
+        const Manifold m = pair_manifold(world, pair);
         for (int k = 0; k < m.point_count; ++k) {
             const Contact& c = m.points[static_cast<std::size_t>(k)];
             const double vn = relative_normal_velocity(a, b, c.point, c.normal); // Eqs. 1, 2

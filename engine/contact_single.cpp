@@ -1,7 +1,7 @@
-#include "single_contact.h"
+#include "contact_single.h"
 
-#include "manifold.h"
-#include "resting_contact.h"
+#include "contact_resting.h"
+#include "narrow_phase_query.h"
 #include "restitution.h"
 
 namespace impulse {
@@ -10,9 +10,7 @@ bool resolve_single_contact(World& world, const Pair& pair, double time,
                             std::vector<CollisionEvent>& events) {
     Body& a = world.bodies[pair.a];
     Body& b = world.bodies[pair.b];
-    ++world.work.narrow_phase_queries;
-    const Manifold m = collide(a.shape, transform_of(a.state), b.shape, transform_of(b.state),
-                               world.solver.contact_tolerance, world.solver.vertex_normal);
+    const Manifold m = pair_manifold(world, pair);
     int chosen = -1;
     for (int i = 0; i < m.point_count; ++i) {
         const Contact& c = m.points[i];

@@ -1,8 +1,9 @@
-#include "resting_contact.h"
+#include "contact_resting.h"
 
 #include "contact_problem.h"
 #include "lcp.h"
 #include "manifold.h"
+#include "narrow_phase_query.h"
 #include "restitution.h"
 #include "world.h"
 
@@ -31,12 +32,10 @@ namespace {
 // 9.81 m/s^2 and d = 1e-9 m) it rises at most 8.4e-9 m.
 constexpr double resting_speed_bound = 1e-6;
 
-} // namespace
-
-bool find_resting_contacts(World& world, int& body_a, int& body_b) {
+// The touching points of every resting pair at the bodies' current states;
+// marks those pairs in world.resting_contacts.pair_resting.
+std::vector<ContactPoint> resting_points(World& world) {
     RestingContacts& rc = world.resting_contacts;
-    rc.any = false;
-    rc.pair_resting.assign(world.pairs.size(), 0);
     const double v_rest = rest_speed(world);
     const double v_hold = resting_speed_bound * v_rest;
     const double tolerance = world.solver.contact_tolerance;
@@ -48,10 +47,10 @@ bool find_resting_contacts(World& world, int& body_a, int& body_b) {
         const Body& b = world.bodies[static_cast<std::size_t>(pair.b)];
         const Transform xa = transform_of(a.state);
         const Transform xb = transform_of(b.state);
-        ++world.work.narrow_phase_queries;
-        if (separation(a.shape, xa, b.shape, xb) > tolerance) {
+        if (pair_separation(world, pair, xa, xb) > tolerance) {
             continue;
         }
+        // The points of the pair just measured: one query with its separation.
         const Manifold m = collide(a.shape, xa, b.shape, xb, tolerance, world.solver.vertex_normal);
         // Resting: no point approaches faster than v_rest (faster is a
         // collision) and none separates faster than v_hold (faster must be
@@ -72,55 +71,59 @@ bool find_resting_contacts(World& world, int& body_a, int& body_b) {
                                            m.points[static_cast<std::size_t>(i)], vn[i]));
         }
     }
-    if (points.empty()) {
-        return true;
-    }
-    const std::size_t n = points.size();
-    const std::vector<double> A = delassus_matrix(world, points);
-    const auto fail = [&]() {
-        body_a = points.front().a;
-        body_b = points.front().b;
-        return false;
-    };
+    return points;
+}
 
-    // First the velocities: whatever the resting points still approach with
-    // (below v_rest: rounding, or a bounce too small to see) is taken out by
-    // an inelastic impulse (e = 0: q = v-), so the forces below hold them at
-    // rest. It can only remove energy; it is no collision and records no event.
+// First the velocities: whatever the resting points still approach with
+// (below v_rest: rounding, or a bounce too small to see) is taken out by an
+// inelastic impulse (e = 0: q = v-), so the forces hold them at rest. It can
+// only remove energy; it is no collision and records no event. False when the
+// impulse LCP has no solution.
+bool stop_approaching(World& world, const std::vector<ContactPoint>& points,
+                      const std::vector<double>& A) {
+    const std::size_t n = points.size();
     std::vector<double> q(n);
     bool approaching = false;
     for (std::size_t i = 0; i < n; ++i) {
         q[i] = points[i].vn;
         approaching = approaching || q[i] < 0.0;
     }
-    if (approaching) {
-        const LcpSolution impulses = solve_lcp(A, q);
-        if (!impulses.solved) {
-            return fail();
-        }
-        for (std::size_t i = 0; i < n; ++i) {
-            if (impulses.lambda[i] > 0.0) {
-                const ContactPoint& pt = points[i];
-                apply_impulse(world.bodies[static_cast<std::size_t>(pt.a)],
-                              world.bodies[static_cast<std::size_t>(pt.b)], pt.contact.point,
-                              pt.contact.normal, impulses.lambda[i]);
-            }
+    if (!approaching) {
+        return true;
+    }
+    const LcpSolution impulses = solve_lcp(A, q);
+    if (!impulses.solved) {
+        return false;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        if (impulses.lambda[i] > 0.0) {
+            const ContactPoint& pt = points[i];
+            apply_impulse(world.bodies[static_cast<std::size_t>(pt.a)],
+                          world.bodies[static_cast<std::size_t>(pt.b)], pt.contact.point,
+                          pt.contact.normal, impulses.lambda[i]);
         }
     }
+    return true;
+}
 
-    // Then the forces: w = A f + q >= 0, f >= 0, f w = 0, where q is the
-    // relative normal acceleration without contact forces, gravity on each
-    // dynamic body (static bodies do not accelerate). Terms in omega^2 are
-    // left out: resting bodies do not spin.
+// Then the forces: w = A f + q >= 0, f >= 0, f w = 0, where q is the relative
+// normal acceleration without contact forces, gravity on each dynamic body
+// (static bodies do not accelerate). Terms in omega^2 are left out: resting
+// bodies do not spin. Fills world.resting_contacts; false when the force LCP
+// has no solution.
+bool hold(World& world, const std::vector<ContactPoint>& points, const std::vector<double>& A) {
+    RestingContacts& rc = world.resting_contacts;
+    const std::size_t n = points.size();
     const auto gravity_of = [&](int body) {
         return world.bodies[static_cast<std::size_t>(body)].is_static() ? Vec2{} : world.gravity;
     };
+    std::vector<double> q(n);
     for (std::size_t i = 0; i < n; ++i) {
         q[i] = dot(gravity_of(points[i].a) - gravity_of(points[i].b), points[i].contact.normal);
     }
     const LcpSolution forces = solve_lcp(A, q);
     if (!forces.solved) {
-        return fail();
+        return false;
     }
 
     rc.any = true;
@@ -145,6 +148,25 @@ bool find_resting_contacts(World& world, int& body_a, int& body_b) {
         acc_a.angular += pt.rn_a * f * a.inv_inertia;
         acc_b.linear -= b.inv_mass * fn;
         acc_b.angular -= pt.rn_b * f * b.inv_inertia;
+    }
+    return true;
+}
+
+} // namespace
+
+bool find_resting_contacts(World& world, int& body_a, int& body_b) {
+    RestingContacts& rc = world.resting_contacts;
+    rc.any = false;
+    rc.pair_resting.assign(world.pairs.size(), 0);
+    const std::vector<ContactPoint> points = resting_points(world);
+    if (points.empty()) {
+        return true;
+    }
+    const std::vector<double> A = delassus_matrix(world, points);
+    if (!stop_approaching(world, points, A) || !hold(world, points, A)) {
+        body_a = points.front().a;
+        body_b = points.front().b;
+        return false;
     }
     return true;
 }

@@ -2,7 +2,7 @@
 // "Simultaneous contact"): every touching point of every touching pair at the
 // collision time is solved together, Newton's law of restitution at each
 // point with non-negative impulses, as one small linear complementarity problem
-// (the formulation is stated in simultaneous_contact.cpp, the solver in lcp.h).
+// (the formulation is stated in contact_simultaneous.cpp, the solver in lcp.h).
 #pragma once
 
 #include "world.h"

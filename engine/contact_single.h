@@ -1,4 +1,4 @@
-// The seed's contact model (PHYSICS.md, "The simulation loop of the seed"):
+// The seed's contact model (docs/physics.md, "The simulation loop of the seed"):
 // one point of one pair at a time.
 #pragma once
 
