@@ -1,5 +1,7 @@
 // The `impulse` tool as a user runs it: exit codes, messages, output files.
 #include "atomic_file.h"
+#include "support/files.h"
+#include "support/tool.h"
 #include "trajectory.h"
 
 #include <catch2/catch.hpp>
@@ -11,39 +13,17 @@
 #include <sys/wait.h>
 
 namespace fs = std::filesystem;
+using namespace impulse::test;
 
 namespace {
 
-struct Outcome {
-    int exit_code = -1;
-    std::string out;
-    std::string err;
-};
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 // Runs the built tool with arguments (already shell-quoted where needed).
 Outcome impulse_tool(const std::string& arguments) {
-    static int counter = 0;
-    const fs::path dir = fs::temp_directory_path();
-    const std::string tag =
-        "impulse-cli-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-    const fs::path out = dir / (tag + ".out"), err = dir / (tag + ".err");
+    const TempDir capture;
+    const fs::path out = capture.dir / "stdout", err = capture.dir / "stderr";
     const std::string command = std::string(IMPULSE_BINARY) + " " + arguments + " > " +
                                 out.string() + " 2> " + err.string();
-    const int status = std::system(command.c_str());
-    Outcome o;
-    o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    o.out = slurp(out);
-    o.err = slurp(err);
-    fs::remove(out);
-    fs::remove(err);
-    return o;
+    return outcome_of(std::system(command.c_str()), out, err);
 }
 
 std::string scene_path(const std::string& name) {

@@ -5,6 +5,7 @@
 #include "compare.h"
 #include "input_error.h"
 #include "sha256.h"
+#include "support/tool.h"
 #include "tolerance.h"
 #include "trajectory.h"
 
@@ -23,6 +24,7 @@
 
 using namespace impulse::harness;
 using Catch::Contains;
+using impulse::test::Outcome;
 
 namespace {
 
@@ -121,15 +123,10 @@ struct TempFile {
     std::string str() const { return path.string(); }
 };
 
-struct Outcome {
-    int exit_code = -1;
-    std::string out;
-    std::string err;
-};
-
 Outcome diff(const std::vector<std::string>& args) {
     std::ostringstream out, err;
     Outcome o;
+    o.exited = true;
     o.exit_code = impulse::harness::cli::diff_verb(args, out, err);
     o.out = out.str();
     o.err = err.str();
@@ -147,6 +144,7 @@ Outcome impulse_main(std::vector<std::string> args) {
     std::streambuf* old_out = std::cout.rdbuf(out.rdbuf());
     std::streambuf* old_err = std::cerr.rdbuf(err.rdbuf());
     Outcome o;
+    o.exited = true;
     o.exit_code = impulse::harness::cli::main(static_cast<int>(argv.size()), argv.data());
     std::cout.rdbuf(old_out);
     std::cerr.rdbuf(old_err);

@@ -8,6 +8,7 @@
 #include "expectations.h"
 #include "run.h"
 #include "scene.h"
+#include "support/trajectories.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -22,6 +23,7 @@ using impulse::harness::run_scene;
 using impulse::harness::Scene;
 using impulse::harness::Trajectory;
 using impulse::harness::TrajectoryEvent;
+using namespace impulse::test;
 using Json = nlohmann::json;
 
 namespace {
@@ -29,39 +31,6 @@ namespace {
 const std::string test_file = "scenes/test.json";
 
 // ---------------------------------------------------------------- building blocks
-
-// A frame: t, then per body x, y, angle, vx, vy, omega.
-using Frame = std::vector<double>;
-
-Trajectory trajectory_of(const std::vector<std::string>& bodies, std::vector<Frame> frames,
-                         std::vector<TrajectoryEvent> events) {
-    Trajectory t;
-    t.columns.push_back("t");
-    for (const std::string& body : bodies) {
-        for (const char* channel : {".x", ".y", ".angle", ".vx", ".vy", ".omega"}) {
-            t.columns.push_back(body + channel);
-        }
-    }
-    t.frames = std::move(frames);
-    t.events = std::move(events);
-    return t;
-}
-
-TrajectoryEvent event(double t, const std::string& a, const std::string& b, double px, double py,
-                      double nx, double ny, double impulse, double vn_before, double vn_after) {
-    TrajectoryEvent e;
-    e.t = t;
-    e.a = a;
-    e.b = b;
-    e.point[0] = px;
-    e.point[1] = py;
-    e.normal[0] = nx;
-    e.normal[1] = ny;
-    e.impulse = impulse;
-    e.vn_before = vn_before;
-    e.vn_after = vn_after;
-    return e;
-}
 
 int failures(const std::vector<ExpectationResult>& results) {
     int n = 0;
@@ -135,9 +104,9 @@ Trajectory drop_trajectory() {
                           {1.00, 0, 0.50, 0, 0, 1.0, 0},
                           {1.25, 0, 0.50, 0, 0, 0.5, 0}},
                          // j = m (1 + e) v: 6, 3, 1.5.
-                         {event(0.50, "ball", "ground", 0, 0, 0, 1, 6.0, -4, 2.0),
-                          event(1.00, "ball", "ground", 0, 0, 0, 1, 3.0, -2, 1.0),
-                          event(1.25, "ball", "ground", 0, 0, 0, 1, 1.5, -1, 0.5)});
+                         {make_event(0.50, "ball", "ground", 0, 0, 0, 1, 6.0, -4, 2.0),
+                          make_event(1.00, "ball", "ground", 0, 0, 0, 1, 3.0, -2, 1.0),
+                          make_event(1.25, "ball", "ground", 0, 0, 0, 1, 1.5, -1, 0.5)});
 }
 
 // A triangle with its centroid at the origin, vertices (1, -1), (0.5, 1),
@@ -164,7 +133,7 @@ Trajectory corner_trajectory() {
                           {0.50, 0.50, 1.00, 0, 1, -4, 0},
                           // y = 1 - 2 / 4 - 4 / 16, angle = 4 / 4.
                           {0.75, 0.75, 0.25, 1, 1, -4, 4}},
-                         {event(0.5, "tri", "ground", 1.5, 0, 0, 1, 4.0, -4.0, 2.0)});
+                         {make_event(0.5, "tri", "ground", 1.5, 0, 0, 1, 4.0, -4.0, 2.0)});
 }
 
 // Discs of radius 0.5: a (mass 1) at the origin moving (4, 1), b (mass 3) at
@@ -187,7 +156,7 @@ Trajectory head_on_trajectory() {
          {0.25, 1.000, 0.25, 0, 4.0, 1, 0, 2.000, 0.25, 0, 0.0, 1, 0},
          {0.50, 0.875, 0.50, 0, -0.5, 1, 0, 2.375, 0.50, 0, 1.5, 1, 0}},
         // n = (-1, 0) points toward a: vn_before = (4 - 0) * -1, vn_after = (-0.5 - 1.5) * -1.
-        {event(0.25, "a", "b", 1.5, 0.25, -1, 0, 4.5, -4.0, 2.0)});
+        {make_event(0.25, "a", "b", 1.5, 0.25, -1, 0, 4.5, -4.0, 2.0)});
 }
 
 // The same discs with e = 1 and b spinning at 2 rad/s (I_b = 3 * 0.5^2 / 2 =
@@ -213,7 +182,7 @@ Trajectory conserved_trajectory() {
                           {0.25, 1.0, 0.25, 0, 4, 1, 0, 2.0, 0.25, 0.5, 0, 1, 2},
                           {0.50, 0.5, 0.50, 0, -2, 1, 0, 2.5, 0.50, 1.0, 2, 1, 2},
                           {0.75, 0.0, 0.75, 0, -2, 1, 0, 3.0, 0.75, 1.5, 2, 1, 2}},
-                         {event(0.25, "a", "b", 1.5, 0.25, -1, 0, 6.0, -4.0, 4.0)});
+                         {make_event(0.25, "a", "b", 1.5, 0.25, -1, 0, 6.0, -4.0, 4.0)});
 }
 
 std::vector<ExpectationResult> evaluate(const std::string& scene, const std::string& expectations,
@@ -316,7 +285,7 @@ TEST_CASE("corner-impact: a hand-built triangle landing on one corner", "[expect
     }
     SECTION("a second collision before the next frame leaves the state unchecked") {
         Trajectory t = corner_trajectory();
-        t.events.push_back(event(0.6, "tri", "ground", -0.5, 0, 0, 1, 1.0, -1.0, 0.5));
+        t.events.push_back(make_event(0.6, "tri", "ground", -0.5, 0, 0, 1, 1.0, -1.0, 0.5));
         t.frames[3][6] = 99.0; // the second hit changed the spin: not the first one's answer
         const std::vector<ExpectationResult> results = evaluate(corner_scene, expectation, t);
         INFO(listing(results));
@@ -393,7 +362,7 @@ TEST_CASE("a velocity that is zero by the physics is judged against the speeds g
         return trajectory_of({"a", "b"},
                              {{0.00, 0, 0, 0, 4, 0, 0, 2, 0, 0, 0, 0, 0},
                               {0.50, 1, 0, 0, residue, 0, 0, 3, 0, 0, 4, 0, 0}},
-                             {event(0.25, "a", "b", 1.5, 0, -1, 0, 4.0, -4.0, 4.0)});
+                             {make_event(0.25, "a", "b", 1.5, 0, -1, 0, 4.0, -4.0, 4.0)});
     };
     // The scale of vA' is (|MA vA| + |MB vB| + MB e |vA - vB|) / (MA + MB) = 4:
     // 4e-12 is allowed.
@@ -595,8 +564,8 @@ const std::string balance_scene = R"({
         {"name": "c", "shape": {"circle": 0.5}, "mass": 2, "position": [1.5, 3],
          "velocity": [-1, 0]}]})";
 
-const TrajectoryEvent pair_event = event(1.0, "b", "c", 0, 3, -1, 0, 4.0, -2.0, 2.0);
-const TrajectoryEvent wall_event = event(1.125, "a", "wall", 5, 1.125, -1, 0, 8.0, -4.0, 4.0);
+const TrajectoryEvent pair_event = make_event(1.0, "b", "c", 0, 3, -1, 0, 4.0, -2.0, 2.0);
+const TrajectoryEvent wall_event = make_event(1.125, "a", "wall", 5, 1.125, -1, 0, 8.0, -4.0, 4.0);
 
 Trajectory balance_trajectory(std::vector<TrajectoryEvent> events = {pair_event, wall_event}) {
     return trajectory_of(
@@ -647,7 +616,8 @@ TEST_CASE("momentum-balance: the walls' impulses account for the change", "[expe
         CHECK(results[0].what.rfind("momentum balance (", 0) == 0);
     }
     SECTION("the static body may be a: the impulse on b is -j n") {
-        const TrajectoryEvent flipped = event(1.125, "wall", "a", 5, 1.125, 1, 0, 8.0, -4.0, 4.0);
+        const TrajectoryEvent flipped =
+            make_event(1.125, "wall", "a", 5, 1.125, 1, 0, 8.0, -4.0, 4.0);
         CHECK(failures(evaluate(balance_scene, balance,
                                 balance_trajectory({pair_event, flipped}))) == 0);
     }
@@ -662,7 +632,7 @@ TEST_CASE("momentum-balance: the walls' impulses account for the change", "[expe
     SECTION("the pair's event counted as a wall's would be off by 4") {
         // Make c static in the scene's eyes by naming the wall instead: then the
         // event gives b j n = (-4, 0) that its partner does not return.
-        const TrajectoryEvent as_wall = event(1.0, "b", "wall", 0, 3, -1, 0, 4.0, -2.0, 2.0);
+        const TrajectoryEvent as_wall = make_event(1.0, "b", "wall", 0, 3, -1, 0, 4.0, -2.0, 2.0);
         require_only_failure(
             evaluate(balance_scene, balance, balance_trajectory({as_wall, wall_event})),
             "momentum balance (x)");
@@ -688,7 +658,8 @@ TEST_CASE("momentum-balance: the walls' impulses account for the change", "[expe
         require_only_failure(evaluate(balance_scene, balance, t), "at t = 1 s");
     }
     SECTION("an event naming a body the scene lacks") {
-        const TrajectoryEvent ghost = event(1.125, "a", "ghost", 5, 1.125, -1, 0, 8.0, -4.0, 4.0);
+        const TrajectoryEvent ghost =
+            make_event(1.125, "a", "ghost", 5, 1.125, -1, 0, 8.0, -4.0, 4.0);
         const std::vector<ExpectationResult> results =
             evaluate(balance_scene, balance, balance_trajectory({pair_event, ghost}));
         INFO(listing(results));
@@ -700,8 +671,8 @@ TEST_CASE("momentum-balance: the walls' impulses account for the change", "[expe
 
 TEST_CASE("momentum-balance counts an event at a frame's own time, in time order",
           "[expectations]") {
-    const TrajectoryEvent right = event(0.25, "a", "right", 1.5, 0, -1, 0, 8.0, -4.0, 4.0);
-    const TrajectoryEvent left = event(0.75, "a", "left", -1.5, 0, 1, 0, 8.0, -4.0, 4.0);
+    const TrajectoryEvent right = make_event(0.25, "a", "right", 1.5, 0, -1, 0, 8.0, -4.0, 4.0);
+    const TrajectoryEvent left = make_event(0.75, "a", "left", -1.5, 0, 1, 0, 8.0, -4.0, 4.0);
     CHECK(failures(evaluate(rattle_scene, balance, rattle_trajectory({right, left}))) == 0);
     // Recorded out of order, as a run whose bodies keep their own clocks may.
     CHECK(failures(evaluate(rattle_scene, balance, rattle_trajectory({left, right}))) == 0);

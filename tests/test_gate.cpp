@@ -1,6 +1,8 @@
 // The golden gate end to end: bless, check, and every way it must fail.
 #include "cli.h"
 #include "gate.h"
+#include "support/files.h"
+#include "support/tool.h"
 #include "trajectory.h"
 
 #include <catch2/catch.hpp>
@@ -13,19 +15,9 @@
 
 namespace fs = std::filesystem;
 using namespace impulse::harness;
+using namespace impulse::test;
 
 namespace {
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-void spit(const fs::path& path, const std::string& text) {
-    std::ofstream(path) << text;
-}
 
 // A throwaway root holding copies of some canonical scenes, and no goldens yet.
 struct Root {
@@ -46,12 +38,6 @@ struct Root {
         return dir / "harness" / "scenes" / (name + ".json");
     }
     fs::path golden(const std::string& name) const { return dir / "goldens" / (name + ".json"); }
-};
-
-struct Outcome {
-    int exit_code;
-    std::string out;
-    std::string err;
 };
 
 // CI mode is read from the environment; each test states the mode it needs,
@@ -85,7 +71,7 @@ Outcome verb(int (*f)(const std::vector<std::string>&, std::ostream&, std::ostre
         err << e.what();
         code = 2;
     }
-    return {code, out.str(), err.str()};
+    return {true, code, out.str(), err.str()};
 }
 
 Outcome bless(const Root& root, std::vector<std::string> args = {}) {

@@ -3,7 +3,9 @@
 // built `impulse` as CI does, on a throwaway root built from the input it
 // constructs, and checks the exit code, the row and the files left behind.
 #include "parallel_check.h"
-#include "tool_process.h"
+#include "support/files.h"
+#include "support/roots.h"
+#include "support/tool.h"
 #include "trajectory.h"
 
 #include <catch2/catch.hpp>
@@ -19,90 +21,9 @@
 #include <vector>
 
 namespace fs = std::filesystem;
-using impulse::test::ChildLimits;
-using impulse::test::start_tool;
-using impulse::test::start_tool_limited;
-using impulse::test::wait_for;
+using namespace impulse::test;
 
 namespace {
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-void spit(const fs::path& path, const std::string& text) {
-    std::ofstream(path, std::ios::binary) << text;
-}
-
-// A fresh directory, removed with all it holds when the scope ends.
-struct TempDir {
-    fs::path dir;
-    TempDir() {
-        static int counter = 0;
-        dir =
-            fs::temp_directory_path() / ("impulse-gate-reliability-" + std::to_string(::getpid()) +
-                                         "-" + std::to_string(counter++));
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::permissions(dir, fs::perms::owner_all, fs::perm_options::add, ignored);
-        fs::remove_all(dir, ignored);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-};
-
-struct Outcome {
-    bool exited = false; // false: ended by a signal (an abort)
-    int exit_code = -1;
-    std::string out;
-    std::string err;
-};
-
-Outcome finish(pid_t pid, const TempDir& capture) {
-    const int status = wait_for(pid);
-    Outcome o;
-    o.exited = WIFEXITED(status);
-    o.exit_code = o.exited ? WEXITSTATUS(status) : -1;
-    o.out = slurp(capture.dir / "stdout");
-    o.err = slurp(capture.dir / "stderr");
-    return o;
-}
-
-Outcome impulse_tool(const std::vector<std::string>& args) {
-    const TempDir capture;
-    return finish(
-        start_tool(args, {}, (capture.dir / "stdout").string(), (capture.dir / "stderr").string()),
-        capture);
-}
-
-Outcome impulse_tool_limited(const std::vector<std::string>& args, const ChildLimits& limits,
-                             const std::vector<std::string>& extra_env = {}) {
-    const TempDir capture;
-    return finish(start_tool_limited(args, limits, (capture.dir / "stdout").string(),
-                                     (capture.dir / "stderr").string(), extra_env),
-                  capture);
-}
-
-// ROOT/harness/scenes and ROOT/goldens holding copies of canonical scenes and
-// their goldens.
-fs::path make_root(const TempDir& dir, const std::vector<std::string>& names) {
-    const fs::path root = dir.dir / "root";
-    fs::create_directories(root / "harness" / "scenes");
-    fs::create_directories(root / "goldens");
-    const fs::path source = IMPULSE_SOURCE_DIR;
-    for (const std::string& name : names) {
-        fs::copy_file(source / "harness" / "scenes" / (name + ".json"),
-                      root / "harness" / "scenes" / (name + ".json"));
-        fs::copy_file(source / "goldens" / (name + ".json"), root / "goldens" / (name + ".json"));
-    }
-    return root;
-}
 
 // The row `check` printed for a scene ("  ERROR  NAME  message").
 std::string row_of(const std::string& out, const std::string& name) {
@@ -139,7 +60,7 @@ TEST_CASE("check -j 2 that runs out of memory in one scene reports it and checks
         return;
     }
     const TempDir dir;
-    const fs::path root = make_root(dir, {"drop-box"});
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
     spit(root / "harness" / "scenes" / "big-gas.json",
          R"({"schema": "impulse/scene@1", "name": "big-gas", "gravity": [0, 0],
              "restitution": 1, "dt": 0.001, "duration": 100,
@@ -151,8 +72,8 @@ TEST_CASE("check -j 2 that runs out of memory in one scene reports it and checks
         limits.address_space_bytes = 256u * 1024 * 1024;
         // The trajectory budget lifted to its largest value (docs/memory.md), so
         // that the scene is not refused up front and really runs out of memory.
-        const Outcome o = impulse_tool_limited({"check", "--root", root.string(), "-j", jobs},
-                                               limits, {"IMPULSE_MAX_TRAJECTORY_MIB=1048576"});
+        const Outcome o = run_tool_limited({"check", "--root", root.string(), "-j", jobs}, limits,
+                                           {"IMPULSE_MAX_TRAJECTORY_MIB=1048576"});
         INFO("-j " << jobs << "\nstdout:\n" << o.out << "stderr:\n" << o.err);
         REQUIRE(o.exited);
         CHECK(o.exit_code == 2);
@@ -210,14 +131,14 @@ TEST_CASE("A scene that is a dangling symlink is an ERROR in check and keeps its
           "--prune",
           "[unit][gate-reliability]") {
     const TempDir dir;
-    const fs::path root = make_root(dir, {"drop-box", "spin"});
+    const fs::path root = make_root(dir, {"drop-box", "spin"}, Goldens::copied);
     const fs::path scene = root / "harness" / "scenes" / "spin.json";
     const fs::path golden = root / "goldens" / "spin.json";
     const std::string golden_text = slurp(golden);
     fs::remove(scene);
     fs::create_symlink(dir.dir / "nowhere" / "spin.json", scene);
 
-    const Outcome check = impulse_tool({"check", "--root", root.string()});
+    const Outcome check = run_tool({"check", "--root", root.string()});
     INFO("check stdout:\n" << check.out << "stderr:\n" << check.err);
     CHECK(check.exit_code == 2);
     const std::string row = row_of(check.out, "spin");
@@ -226,7 +147,7 @@ TEST_CASE("A scene that is a dangling symlink is an ERROR in check and keeps its
     CHECK(row.find("cannot be read") != std::string::npos);
     CHECK(row_of(check.out, "drop-box").find("ok") != std::string::npos);
 
-    const Outcome bless = impulse_tool({"bless", "--root", root.string(), "--prune"});
+    const Outcome bless = run_tool({"bless", "--root", root.string(), "--prune"});
     INFO("bless stdout:\n" << bless.out << "stderr:\n" << bless.err);
     CHECK(bless.exit_code == 2);
     CHECK(bless.err.find("spin.json") != std::string::npos);
@@ -261,20 +182,20 @@ TEST_CASE("A golden's -0, -0.0 and -0e0 read as negative zero", "[unit][gate-rel
         spit(file, text);
         INFO("spelled " << spelling);
         const Outcome same =
-            impulse_tool({"diff", file.string(), (dir.dir / "negative.json").string()});
+            run_tool({"diff", file.string(), (dir.dir / "negative.json").string()});
         INFO("stdout:\n" << same.out << "stderr:\n" << same.err);
         CHECK(same.exit_code == 0);
         const Outcome other =
-            impulse_tool({"diff", file.string(), (dir.dir / "positive.json").string()});
+            run_tool({"diff", file.string(), (dir.dir / "positive.json").string()});
         CHECK(other.exit_code == 1);
     }
     // Zero without a sign stays +0 in every spelling.
     std::string text = positive;
     replace_once(text, "[0.5, 0]", "[0.5, 0.0e0]");
     spit(dir.dir / "plain.json", text);
-    CHECK(impulse_tool(
-              {"diff", (dir.dir / "plain.json").string(), (dir.dir / "positive.json").string()})
-              .exit_code == 0);
+    CHECK(
+        run_tool({"diff", (dir.dir / "plain.json").string(), (dir.dir / "positive.json").string()})
+            .exit_code == 0);
 }
 
 // Issue item 10: the solver and engine blocks are outside the digest, so the
@@ -282,7 +203,7 @@ TEST_CASE("A golden's -0, -0.0 and -0e0 read as negative zero", "[unit][gate-rel
 TEST_CASE("A golden whose solver block or engine was edited fails check naming the key",
           "[unit][gate-reliability]") {
     const TempDir dir;
-    const fs::path root = make_root(dir, {"drop-box"});
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
     const fs::path golden = root / "goldens" / "drop-box.json";
     const std::string original = slurp(golden);
     REQUIRE(original.find("\"toi_tolerance\": 1e-12") != std::string::npos);
@@ -297,7 +218,7 @@ TEST_CASE("A golden whose solver block or engine was edited fails check naming t
             if (tolerance) {
                 args.insert(args.end(), {"--tolerance", "--atol", "1", "--rtol", "1"});
             }
-            const Outcome o = impulse_tool(args);
+            const Outcome o = run_tool(args);
             INFO("stdout:\n" << o.out << "stderr:\n" << o.err);
             CHECK(o.exit_code == 1);
             const std::string row = row_of(o.out, "drop-box");
@@ -311,7 +232,7 @@ TEST_CASE("A golden whose solver block or engine was edited fails check naming t
         std::string text = original;
         replace_once(text, "\"ccd\": false", "\"cdd\": false");
         spit(golden, text);
-        const Outcome o = impulse_tool({"check", "--root", root.string()});
+        const Outcome o = run_tool({"check", "--root", root.string()});
         INFO("stdout:\n" << o.out << "stderr:\n" << o.err);
         CHECK(o.exit_code == 1);
         const std::string row = row_of(o.out, "drop-box");
@@ -322,7 +243,7 @@ TEST_CASE("A golden whose solver block or engine was edited fails check naming t
         std::string text = original;
         replace_once(text, "\"engine\": \"impulse ", "\"engine\": \"box2d ");
         spit(golden, text);
-        const Outcome o = impulse_tool({"check", "--root", root.string()});
+        const Outcome o = run_tool({"check", "--root", root.string()});
         INFO("stdout:\n" << o.out << "stderr:\n" << o.err);
         CHECK(o.exit_code == 1);
         const std::string row = row_of(o.out, "drop-box");
@@ -336,7 +257,7 @@ TEST_CASE("A golden whose solver block or engine was edited fails check naming t
         std::string text = original;
         text.replace(at, end - at + 1, "\"engine\": \"impulse 0.0.1-old\"");
         spit(golden, text);
-        const Outcome o = impulse_tool({"check", "--root", root.string()});
+        const Outcome o = run_tool({"check", "--root", root.string()});
         INFO("stdout:\n" << o.out << "stderr:\n" << o.err);
         CHECK(o.exit_code == 0);
         CHECK(o.err.find("impulse 0.0.1-old") != std::string::npos);
@@ -348,13 +269,13 @@ TEST_CASE("A golden whose solver block or engine was edited fails check naming t
 TEST_CASE("A bad --atol, --rtol or --ulp is one usage error before any scene runs",
           "[unit][gate-reliability]") {
     const TempDir dir;
-    const fs::path root = make_root(dir, {"drop-box", "spin"});
+    const fs::path root = make_root(dir, {"drop-box", "spin"}, Goldens::copied);
     const std::vector<std::pair<std::string, std::string>> bad = {
         {"--atol", "nan"},   {"--rtol", "inf"},          {"--ulp", "-1"},
         {"--atol", "-1e-9"}, {"--rtol", "position=nan"}, {"--ulp", "1.5"}};
     for (const auto& [option, value] : bad) {
         const Outcome o =
-            impulse_tool({"check", "--root", root.string(), "--tolerance", option, value});
+            run_tool({"check", "--root", root.string(), "--tolerance", option, value});
         INFO(option << " " << value << "\nstdout:\n" << o.out << "stderr:\n" << o.err);
         CHECK(o.exit_code == 2);
         CHECK(o.out.find("ERROR") == std::string::npos);
@@ -368,14 +289,14 @@ TEST_CASE("A bad --atol, --rtol or --ulp is one usage error before any scene run
 TEST_CASE("bless counts a golden it cannot write as one it could not write",
           "[unit][gate-reliability]") {
     const TempDir dir;
-    const fs::path root = make_root(dir, {"drop-box"});
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
     fs::remove(root / "goldens" / "drop-box.json");
     ChildLimits limits;
     // drop-box's golden holds 181 frames (3 s at 1/60 s) of 7 numbers, at
     // least "0, " each: over 3000 bytes, so its write fails past 1024 as on a
     // full disk, while the tool's output, two lines, fits.
     limits.file_size_bytes = 1024;
-    const Outcome o = impulse_tool_limited({"bless", "--root", root.string()}, limits);
+    const Outcome o = run_tool_limited({"bless", "--root", root.string()}, limits);
     INFO("stdout:\n" << o.out << "stderr:\n" << o.err);
     CHECK(o.exit_code == 2);
     CHECK(o.out.find("1 could not write the golden") != std::string::npos);
@@ -389,11 +310,11 @@ TEST_CASE("bless counts a golden it cannot write as one it could not write",
 TEST_CASE("A golden that is a symlink loop is reported as unreadable, not missing",
           "[unit][gate-reliability]") {
     const TempDir dir;
-    const fs::path root = make_root(dir, {"drop-box"});
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
     const fs::path golden = root / "goldens" / "drop-box.json";
     fs::remove(golden);
     fs::create_symlink("drop-box.json", golden);
-    const Outcome o = impulse_tool({"check", "--root", root.string()});
+    const Outcome o = run_tool({"check", "--root", root.string()});
     INFO("stdout:\n" << o.out << "stderr:\n" << o.err);
     CHECK(o.exit_code == 2);
     const std::string row = row_of(o.out, "drop-box");
@@ -407,7 +328,7 @@ TEST_CASE("A golden that is a symlink loop is reported as unreadable, not missin
 TEST_CASE("Scene or golden names that differ only in case are refused, naming both files",
           "[unit][gate-reliability]") {
     const TempDir dir;
-    const fs::path root = make_root(dir, {"drop-box"});
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
     const fs::path scenes = root / "harness" / "scenes";
     std::string text = slurp(scenes / "drop-box.json");
     replace_once(text, "\"name\": \"drop-box\"", "\"name\": \"Drop-Box\"");
@@ -420,7 +341,7 @@ TEST_CASE("Scene or golden names that differ only in case are refused, naming bo
          {std::vector<std::string>{"check", "--root", root.string()},
           std::vector<std::string>{"bless", "--root", root.string()},
           std::vector<std::string>{"bless", "--root", root.string(), "Drop-Box", "drop-box"}}) {
-        const Outcome o = impulse_tool(args);
+        const Outcome o = run_tool(args);
         INFO(args[0] << "\nstdout:\n" << o.out << "stderr:\n" << o.err);
         CHECK(o.exit_code == 2);
         CHECK(names_both(o.err));
@@ -433,13 +354,13 @@ TEST_CASE("Scene or golden names that differ only in case are refused, naming bo
     fs::remove(scenes / "Drop-Box.json");
     fs::rename(root / "goldens" / "drop-box.json", root / "goldens" / "Drop-Box.json");
     const std::string golden_text = slurp(root / "goldens" / "Drop-Box.json");
-    const Outcome bless = impulse_tool({"bless", "--root", root.string(), "--prune"});
+    const Outcome bless = run_tool({"bless", "--root", root.string(), "--prune"});
     INFO("bless stdout:\n" << bless.out << "stderr:\n" << bless.err);
     CHECK(bless.exit_code == 2);
     CHECK(names_both(bless.err));
     CHECK(slurp(root / "goldens" / "Drop-Box.json") == golden_text);
     CHECK_FALSE(fs::exists(root / "goldens" / "drop-box.json"));
-    const Outcome check = impulse_tool({"check", "--root", root.string()});
+    const Outcome check = run_tool({"check", "--root", root.string()});
     INFO("check stdout:\n" << check.out << "stderr:\n" << check.err);
     CHECK(check.exit_code == 2);
     CHECK(names_both(row_of(check.out, "drop-box")));

@@ -7,7 +7,9 @@
 #include "atomic_file.h"
 #include "gate.h"
 #include "input_error.h"
-#include "tool_process.h"
+#include "support/files.h"
+#include "support/roots.h"
+#include "support/tool.h"
 #include "trajectory.h"
 
 #include <algorithm>
@@ -31,115 +33,9 @@
 
 namespace fs = std::filesystem;
 using impulse::harness::InputError;
-using impulse::test::start_tool;
-using impulse::test::wait_for;
+using namespace impulse::test;
 
 namespace {
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-void spit(const fs::path& path, const std::string& text) {
-    std::ofstream(path, std::ios::binary) << text;
-}
-
-// A fresh directory, removed with all it holds when the scope ends.
-struct TempDir {
-    fs::path dir;
-    TempDir() {
-        static int counter = 0;
-        dir = fs::temp_directory_path() /
-              ("impulse-atomicity-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::permissions(dir, fs::perms::owner_all, fs::perm_options::add, ignored);
-        fs::remove_all(dir, ignored);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-};
-
-struct Outcome {
-    int exit_code = -1; // -1: ended by a signal
-    std::string out;
-    std::string err;
-};
-
-Outcome run_tool(const std::vector<std::string>& args,
-                 const std::vector<std::string>& extra_env = {}) {
-    const TempDir capture;
-    const fs::path out = capture.dir / "stdout", err = capture.dir / "stderr";
-    const int status = wait_for(start_tool(args, extra_env, out.string(), err.string()));
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-}
-
-// Runs the tool with writes refused past `limit_bytes` (RLIMIT_FSIZE, with
-// SIGXFSZ ignored so a write past it fails with EFBIG instead of killing):
-// every file it writes that would be larger fails half-way, at the same byte
-// every time.
-Outcome run_tool_with_file_size_limit(const std::vector<std::string>& args, rlim_t limit_bytes) {
-    const TempDir capture;
-    const std::string out = (capture.dir / "stdout").string();
-    const std::string err = (capture.dir / "stderr").string();
-    std::vector<std::string> env;
-    for (char** entry = environ; *entry != nullptr; ++entry) {
-        if (std::string(*entry).rfind("CI=", 0) != 0) {
-            env.emplace_back(*entry);
-        }
-    }
-    std::vector<std::string> arguments = {IMPULSE_BINARY};
-    arguments.insert(arguments.end(), args.begin(), args.end());
-    std::vector<char*> argv, envp;
-    for (std::string& a : arguments) {
-        argv.push_back(a.data());
-    }
-    argv.push_back(nullptr);
-    for (std::string& e : env) {
-        envp.push_back(e.data());
-    }
-    envp.push_back(nullptr);
-
-    const pid_t pid = ::fork();
-    REQUIRE(pid >= 0);
-    if (pid == 0) {
-        // Only async-signal-safe calls between fork and exec.
-        const int out_fd = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-        const int err_fd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-        struct rlimit limit = {limit_bytes, limit_bytes};
-        if (out_fd < 0 || err_fd < 0 || ::dup2(out_fd, 1) < 0 || ::dup2(err_fd, 2) < 0 ||
-            std::signal(SIGXFSZ, SIG_IGN) == SIG_ERR || ::setrlimit(RLIMIT_FSIZE, &limit) != 0) {
-            ::_exit(126);
-        }
-        ::execve(IMPULSE_BINARY, argv.data(), envp.data());
-        ::_exit(127);
-    }
-    const int status = wait_for(pid);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-}
-
-// A root holding copies of the canonical scenes (all of them when `names` is
-// empty), and no goldens yet.
-fs::path make_root(const TempDir& dir, const std::vector<std::string>& names = {}) {
-    const fs::path root = dir.dir / "root";
-    const fs::path scenes = root / "harness" / "scenes";
-    fs::create_directories(scenes);
-    const fs::path canonical = fs::path(IMPULSE_SOURCE_DIR) / "harness" / "scenes";
-    for (const fs::directory_entry& e : fs::directory_iterator(canonical)) {
-        const std::string name = e.path().stem().string();
-        if (e.is_regular_file() && e.path().extension() == ".json" &&
-            (names.empty() || std::find(names.begin(), names.end(), name) != names.end())) {
-            fs::copy_file(e.path(), scenes / e.path().filename());
-        }
-    }
-    return root;
-}
 
 // Every goldens/NAME.json, by NAME.
 std::map<std::string, std::string> goldens_in(const fs::path& root) {
@@ -194,7 +90,7 @@ std::map<std::string, std::string> older_versions(const std::map<std::string, st
 TEST_CASE("A bless killed at any moment leaves every golden old or new, never torn",
           "[unit][atomicity]") {
     const TempDir dir;
-    const fs::path root = make_root(dir);
+    const fs::path root = make_root(dir, {}, Goldens::none);
     const fs::path goldens = root / "goldens";
     const std::vector<std::string> bless = {"bless", "--root", root.string()};
     impulse::harness::GateRoot gate_root;
@@ -300,7 +196,7 @@ TEST_CASE("A bless whose writes fail half-way leaves every golden old or new, an
     // as if bless died in the middle of writing it. A writer that wrote in
     // place would leave those goldens cut off at the limit.
     const TempDir dir;
-    const fs::path root = make_root(dir);
+    const fs::path root = make_root(dir, {}, Goldens::none);
     const fs::path goldens = root / "goldens";
     const std::vector<std::string> bless = {"bless", "--root", root.string()};
     REQUIRE(run_tool(bless).exit_code == 0);
@@ -321,7 +217,9 @@ TEST_CASE("A bless whose writes fail half-way leaves every golden old or new, an
     REQUIRE(too_large > 0);            // some writes fail half-way
     REQUIRE(too_large < fresh.size()); // and others succeed
 
-    const Outcome limited = run_tool_with_file_size_limit(bless, limit);
+    ChildLimits limits;
+    limits.file_size_bytes = limit; // writes past it fail with EFBIG, at the same byte every time
+    const Outcome limited = run_tool_limited(bless, limits);
     INFO(limited.out << limited.err);
     CHECK(limited.exit_code == 2); // a golden that cannot be written is bad set-up
     std::size_t lines = 0;
@@ -352,7 +250,7 @@ TEST_CASE("A bless whose writes fail half-way leaves every golden old or new, an
 TEST_CASE("A writer's temporary file left in goldens/ is no golden to check, CI or bless",
           "[unit][atomicity]") {
     const TempDir dir;
-    const fs::path root = make_root(dir, {"drop-box", "glancing"});
+    const fs::path root = make_root(dir, {"drop-box", "glancing"}, Goldens::none);
     REQUIRE(run_tool({"bless", "--root", root.string()}).exit_code == 0);
     const std::map<std::string, std::string> fresh = goldens_in(root);
     REQUIRE(fresh.size() == 2);

@@ -4,7 +4,8 @@
 // the budget and how to change it; what fits completes under the cap. Never
 // a crash (exit 134), never an output half-written.
 #include "memory_budget.h"
-#include "tool_process.h"
+#include "support/files.h"
+#include "support/tool.h"
 
 #include <catch2/catch.hpp>
 #include <cstdint>
@@ -17,71 +18,22 @@
 #include <vector>
 
 namespace fs = std::filesystem;
-using impulse::test::ChildLimits;
-using impulse::test::start_tool_limited;
-using impulse::test::under_address_sanitizer;
-using impulse::test::wait_for;
+using namespace impulse::test;
 
 namespace {
 
 constexpr std::size_t mib = 1024 * 1024;
 
-// A fresh directory, removed with all it holds when the scope ends (as in
-// test_bad_input.cpp).
-struct TempDir {
-    fs::path dir;
-    TempDir() {
-        static int counter = 0;
-        dir = fs::temp_directory_path() /
-              ("impulse-memory-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(dir, ignored);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-};
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-void spit(const fs::path& path, const std::string& text) {
-    std::ofstream(path, std::ios::binary) << text;
-}
-
-struct Outcome {
-    bool exited = false; // false: ended by a signal (134 is SIGABRT)
-    int exit_code = -1;
-    std::string out;
-    std::string err;
-};
-
 // The tool with `args`, the environment plus `env`, its address space capped.
 Outcome capped_tool(const std::vector<std::string>& args, const std::vector<std::string>& env,
                     std::size_t cap_bytes) {
-    const TempDir capture;
-    const std::string out_file = (capture.dir / "stdout").string();
-    const std::string err_file = (capture.dir / "stderr").string();
     // Under AddressSanitizer no cap: it reserves terabytes of address space.
     // A cap of 0 means none.
     ChildLimits limits;
     if (cap_bytes > 0 && !under_address_sanitizer) {
         limits.address_space_bytes = cap_bytes;
     }
-    const int status = wait_for(start_tool_limited(args, limits, out_file, err_file, env));
-    Outcome outcome;
-    outcome.exited = WIFEXITED(status);
-    outcome.exit_code = outcome.exited ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    outcome.out = slurp(out_file);
-    outcome.err = slurp(err_file);
-    return outcome;
+    return run_tool_limited(args, limits, env);
 }
 
 // Exit 2 and one sentence naming the file and what to change.

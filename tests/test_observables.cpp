@@ -8,6 +8,7 @@
 #include "cli.h"
 #include "observables.h"
 #include "scene.h"
+#include "support/trajectories.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -25,27 +26,11 @@ using impulse::harness::parse_scene;
 using impulse::harness::Scene;
 using impulse::harness::Trajectory;
 using impulse::harness::TrajectoryEvent;
+using namespace impulse::test;
 
 namespace {
 
 const std::string test_file = "scenes/test.json";
-
-// A frame: t, then per body x, y, angle, vx, vy, omega.
-using Frame = std::vector<double>;
-
-Trajectory trajectory_of(const std::vector<std::string>& bodies, std::vector<Frame> frames,
-                         std::vector<TrajectoryEvent> events) {
-    Trajectory t;
-    t.columns.push_back("t");
-    for (const std::string& body : bodies) {
-        for (const char* channel : {".x", ".y", ".angle", ".vx", ".vy", ".omega"}) {
-            t.columns.push_back(body + channel);
-        }
-    }
-    t.frames = std::move(frames);
-    t.events = std::move(events);
-    return t;
-}
 
 TrajectoryEvent hit(double t, const std::string& a, const std::string& b, double vn_before = -1.0,
                     double vn_after = 0.5) {

@@ -13,8 +13,10 @@
 // tool runs, and close it once the tool has taken the byte: a tool that opens
 // the FIFO (the defect) then reads a one-byte file and says something else,
 // instead of hanging the test. No clock is involved.
-#include "tool_process.h"
-#include "utf8.h"
+#include "support/files.h"
+#include "support/roots.h"
+#include "support/tool.h"
+#include "support/utf8.h"
 
 #include <catch2/catch.hpp>
 #include <fcntl.h>
@@ -29,71 +31,16 @@
 #include <vector>
 
 namespace fs = std::filesystem;
-using impulse::test::start_tool;
-using impulse::test::valid_utf8;
-using impulse::test::wait_for;
+using namespace impulse::test;
 
 namespace {
 
 const fs::path source_dir = IMPULSE_SOURCE_DIR;
 
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-void spit(const fs::path& path, const std::string& text) {
-    std::ofstream(path, std::ios::binary) << text;
-}
-
-// A fresh directory, removed with all it holds when the scope ends.
-struct TempDir {
-    fs::path dir;
-    TempDir() {
-        static int counter = 0;
-        dir = fs::temp_directory_path() / ("impulse-output-paths-" + std::to_string(::getpid()) +
-                                           "-" + std::to_string(counter++));
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(dir, ignored);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-};
-
-struct Outcome {
-    bool exited = false; // false: ended by a signal, i.e. it crashed
-    int exit_code = -1;
-    std::string out;
-    std::string err;
-};
-
-Outcome outcome_of(int status, const fs::path& out_file, const fs::path& err_file) {
-    Outcome o;
-    o.exited = WIFEXITED(status);
-    o.exit_code = o.exited ? WEXITSTATUS(status) : -1;
-    o.out = slurp(out_file);
-    o.err = slurp(err_file);
-    return o;
-}
-
-Outcome impulse_tool(const std::vector<std::string>& args,
-                     const std::vector<std::string>& extra_env = {}) {
-    const TempDir capture;
-    const fs::path out_file = capture.dir / "stdout", err_file = capture.dir / "stderr";
-    const int status = wait_for(start_tool(args, extra_env, out_file.string(), err_file.string()));
-    return outcome_of(status, out_file, err_file);
-}
-
 // The tool run with a writer held on `fifo` and one byte waiting in it (see
 // the top of the file). O_RDWR on a FIFO never blocks on Linux.
-Outcome impulse_tool_feeding(const fs::path& fifo, const std::vector<std::string>& args,
-                             const std::vector<std::string>& extra_env = {}) {
+Outcome run_tool_feeding(const fs::path& fifo, const std::vector<std::string>& args,
+                         const std::vector<std::string>& extra_env = {}) {
     const int fd = ::open(fifo.c_str(), O_RDWR | O_NONBLOCK | O_CLOEXEC);
     REQUIRE(fd >= 0);
     REQUIRE(::write(fd, "x", 1) == 1);
@@ -160,18 +107,6 @@ void check_refused(const Outcome& o, const std::string& path, const std::string&
     CHECK(valid_utf8(o.err));
 }
 
-// ROOT/harness/scenes/drop-box.json and ROOT/goldens/drop-box.json, copies of
-// the canonical ones.
-fs::path make_root(const TempDir& dir) {
-    const fs::path root = dir.dir / "root";
-    fs::create_directories(root / "harness" / "scenes");
-    fs::create_directories(root / "goldens");
-    fs::copy_file(source_dir / "harness" / "scenes" / "drop-box.json",
-                  root / "harness" / "scenes" / "drop-box.json");
-    fs::copy_file(source_dir / "goldens" / "drop-box.json", root / "goldens" / "drop-box.json");
-    return root;
-}
-
 // The arguments of every verb's single-file output, writing to `target`.
 struct FileOutput {
     std::string name;
@@ -197,7 +132,7 @@ std::vector<FileOutput> file_outputs(const fs::path& root, const std::string& ta
 TEST_CASE("Every single-file output refuses a FIFO, a symbolic link and a directory, untouched",
           "[unit][output-paths]") {
     const TempDir dir;
-    const fs::path root = make_root(dir);
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
     const fs::path outside = dir.dir / "outside.txt";
     spit(outside, "a file outside, not to be touched\n");
     const std::vector<std::pair<std::string, std::string>> kinds = {
@@ -219,7 +154,7 @@ TEST_CASE("Every single-file output refuses a FIFO, a symbolic link and a direct
         for (const FileOutput& output : file_outputs(root, target.string())) {
             INFO(output.name << " onto a " << kind);
             const std::string before = state_of(target);
-            check_refused(impulse_tool(output.args), target.string(), words);
+            check_refused(run_tool(output.args), target.string(), words);
             CHECK(state_of(target) == before);
             CHECK(state_of(outside) == "file a file outside, not to be touched\n");
             CHECK(state_of(dir.dir / "nowhere") == "missing");
@@ -234,28 +169,28 @@ TEST_CASE("Every single-file output refuses a FIFO, a symbolic link and a direct
 TEST_CASE("An output at /dev/null is refused and /dev/null stays a character device",
           "[unit][output-paths]") {
     const TempDir dir;
-    const fs::path root = make_root(dir);
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
     struct stat info {};
     REQUIRE(::lstat("/dev/null", &info) == 0);
     REQUIRE(S_ISCHR(info.st_mode)); // never created here, only looked at
     const std::string before = state_of("/dev/null");
     for (const FileOutput& output : file_outputs(root, "/dev/null")) {
         INFO(output.name);
-        check_refused(impulse_tool(output.args), "/dev/null", "is a character device");
+        check_refused(run_tool(output.args), "/dev/null", "is a character device");
         CHECK(state_of("/dev/null") == before);
     }
 }
 
 TEST_CASE("A path that is a regular file or missing is written whole", "[unit][output-paths]") {
     const TempDir dir;
-    const fs::path root = make_root(dir);
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
     const fs::path fresh = dir.dir / "fresh.json", old = dir.dir / "old.json";
     spit(old, "old bytes");
     const std::string scene = (root / "harness" / "scenes" / "drop-box.json").string();
-    const Outcome to_stdout = impulse_tool({"run", scene});
+    const Outcome to_stdout = run_tool({"run", scene});
     REQUIRE(to_stdout.exit_code == 0);
     for (const fs::path& target : {fresh, old}) {
-        const Outcome o = impulse_tool({"run", scene, "--out", target.string()});
+        const Outcome o = run_tool({"run", scene, "--out", target.string()});
         CHECK(o.exit_code == 0);
         CHECK(state_of(target) == "file " + to_stdout.out);
     }
@@ -263,22 +198,21 @@ TEST_CASE("A path that is a regular file or missing is written whole", "[unit][o
 
 TEST_CASE("The path - writes an output to standard output", "[unit][output-paths]") {
     const TempDir dir;
-    const fs::path root = make_root(dir);
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
     const std::string scene = (root / "harness" / "scenes" / "drop-box.json").string();
-    const Outcome plain = impulse_tool({"run", scene});
-    const Outcome dash = impulse_tool({"run", scene, "--out", "-"});
+    const Outcome plain = run_tool({"run", scene});
+    const Outcome dash = run_tool({"run", scene, "--out", "-"});
     CHECK(dash.exit_code == 0);
     CHECK(dash.out == plain.out);
     CHECK(dash.out.rfind("{\n  \"schema\": \"impulse/trajectory@1\"", 0) == 0);
     CHECK_FALSE(fs::exists("-"));
 
-    const Outcome svg = impulse_tool({"render", scene, "--out", "-", "--root", root.string()});
+    const Outcome svg = run_tool({"render", scene, "--out", "-", "--root", root.string()});
     CHECK(svg.exit_code == 0);
     CHECK(svg.out.find("<svg") != std::string::npos);
 
     // Standard output is the XML alone; the table moves to standard error.
-    const Outcome junit =
-        impulse_tool({"check", "drop-box", "--root", root.string(), "--junit", "-"});
+    const Outcome junit = run_tool({"check", "drop-box", "--root", root.string(), "--junit", "-"});
     INFO("stdout: " << junit.out << "\nstderr: " << junit.err);
     CHECK(junit.exit_code == 0);
     CHECK(junit.out.rfind("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites", 0) == 0);
@@ -291,24 +225,24 @@ TEST_CASE("The path - writes an output to standard output", "[unit][output-paths
                                             "--toi", "secant",       "--toi-tolerance",
                                             "1e-9",  "--no-box2d",   "--repeats",
                                             "1",     "--svg",        "-"};
-    const Outcome plot = impulse_tool(sweep);
+    const Outcome plot = run_tool(sweep);
     CHECK(plot.exit_code == 0);
     CHECK(plot.out.find("<svg") != std::string::npos);
     CHECK(plot.out.find("grid points") == std::string::npos);
     CHECK(plot.err.find("1 points measured") != std::string::npos);
     std::vector<std::string> both = sweep;
     both.push_back("--json");
-    CHECK(impulse_tool(both).exit_code == 2); // two outputs cannot share standard output
+    CHECK(run_tool(both).exit_code == 2); // two outputs cannot share standard output
 
     // A folder is no stream.
-    check_refused(impulse_tool({"check", "drop-box", "--root", root.string(), "--report", "-"}),
-                  "-", "--report");
+    check_refused(run_tool({"check", "drop-box", "--root", root.string(), "--report", "-"}), "-",
+                  "--report");
 }
 
 TEST_CASE("CI mode: check --junit and --report into goldens/ are refused, the golden intact",
           "[unit][output-paths]") {
     const TempDir dir;
-    const fs::path root = make_root(dir);
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
     const fs::path goldens = root / "goldens";
     const fs::path golden = goldens / "drop-box.json";
     const std::string golden_bytes = slurp(source_dir / "goldens" / "drop-box.json");
@@ -322,7 +256,7 @@ TEST_CASE("CI mode: check --junit and --report into goldens/ are refused, the go
     for (const std::string& target : file_targets) {
         INFO("--junit " << target);
         const Outcome o =
-            impulse_tool({"check", "drop-box", "--root", root.string(), "--junit", target}, ci);
+            run_tool({"check", "drop-box", "--root", root.string(), "--junit", target}, ci);
         check_refused(o, target, "is in the goldens folder");
         CHECK(o.out.empty()); // refused before any scene ran
     }
@@ -330,13 +264,13 @@ TEST_CASE("CI mode: check --junit and --report into goldens/ are refused, the go
          {goldens.string(), (goldens / "report").string(), (dir.dir / "goldens-link").string()}) {
         INFO("--report " << folder);
         check_refused(
-            impulse_tool({"check", "drop-box", "--root", root.string(), "--report", folder}, ci),
+            run_tool({"check", "drop-box", "--root", root.string(), "--report", folder}, ci),
             folder, "is in the goldens folder");
     }
     // Every verb's file output, not only in CI mode.
     for (const FileOutput& output : file_outputs(root, (goldens / "new.out").string())) {
         INFO(output.name);
-        check_refused(impulse_tool(output.args), (goldens / "new.out").string(),
+        check_refused(run_tool(output.args), (goldens / "new.out").string(),
                       "is in the goldens folder");
     }
     CHECK(state_of(golden) == "file " + golden_bytes);
@@ -346,12 +280,12 @@ TEST_CASE("CI mode: check --junit and --report into goldens/ are refused, the go
 TEST_CASE("check --report refuses a FIFO where a report file goes, and writes none of them",
           "[unit][output-paths]") {
     const TempDir dir;
-    const fs::path root = make_root(dir);
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
     const fs::path report = dir.dir / "report";
     fs::create_directories(report);
     REQUIRE(::mkfifo((report / "index.html").c_str(), 0600) == 0);
     const Outcome o =
-        impulse_tool({"check", "drop-box", "--root", root.string(), "--report", report.string()});
+        run_tool({"check", "drop-box", "--root", root.string(), "--report", report.string()});
     INFO("stdout: " << o.out << "\nstderr: " << o.err);
     CHECK(o.exit_code == 2);
     CHECK(o.err.find((report / "index.html").string() + ": cannot be written (it is a FIFO") == 0);
@@ -360,9 +294,9 @@ TEST_CASE("check --report refuses a FIFO where a report file goes, and writes no
 
     const fs::path fifo_folder = dir.dir / "fifo-folder";
     REQUIRE(::mkfifo(fifo_folder.c_str(), 0600) == 0);
-    check_refused(impulse_tool({"check", "drop-box", "--root", root.string(), "--report",
-                                fifo_folder.string()}),
-                  fifo_folder.string(), "is not a folder");
+    check_refused(
+        run_tool({"check", "drop-box", "--root", root.string(), "--report", fifo_folder.string()}),
+        fifo_folder.string(), "is not a folder");
     CHECK(state_of(fifo_folder) == "fifo");
 }
 
@@ -370,21 +304,21 @@ TEST_CASE("check --report refuses a FIFO where a report file goes, and writes no
 TEST_CASE("box2d --out refuses a link where a trajectory goes, and writes neither run",
           "[unit][output-paths]") {
     const TempDir dir;
-    const fs::path root = make_root(dir);
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
     const fs::path out = dir.dir / "runs";
     const fs::path outside = dir.dir / "outside.json";
     spit(outside, "outside\n");
     fs::create_directories(out);
     fs::create_symlink(outside, out / "drop-box.impulse.json");
     const Outcome o =
-        impulse_tool({"box2d", "drop-box", "--root", root.string(), "--out", out.string()});
+        run_tool({"box2d", "drop-box", "--root", root.string(), "--out", out.string()});
     INFO("stdout: " << o.out << "\nstderr: " << o.err);
     CHECK(o.exit_code == 2);
     CHECK(o.err.find("cannot be written (it is a symbolic link") != std::string::npos);
     CHECK(state_of(out) == "folder drop-box.impulse.json");
     CHECK(state_of(outside) == "file outside\n");
-    check_refused(impulse_tool({"box2d", "drop-box", "--root", root.string(), "--out",
-                                (root / "goldens").string()}),
+    check_refused(run_tool({"box2d", "drop-box", "--root", root.string(), "--out",
+                            (root / "goldens").string()}),
                   (root / "goldens").string(), "is in the goldens folder");
 }
 #endif
@@ -392,19 +326,19 @@ TEST_CASE("box2d --out refuses a link where a trajectory goes, and writes neithe
 TEST_CASE("A FIFO golden ends check and bless at once with an ERROR naming it",
           "[unit][output-paths]") {
     const TempDir dir;
-    const fs::path root = make_root(dir);
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
     const fs::path golden = root / "goldens" / "drop-box.json";
     fs::remove(golden);
     REQUIRE(::mkfifo(golden.c_str(), 0600) == 0);
     const std::string words = golden.string() + ": cannot be read (it is a FIFO";
 
-    const Outcome check = impulse_tool_feeding(golden, {"check", "--root", root.string()});
+    const Outcome check = run_tool_feeding(golden, {"check", "--root", root.string()});
     INFO("stdout: " << check.out << "\nstderr: " << check.err);
     CHECK(check.exit_code == 2);
     CHECK(check.out.find("  ERROR  drop-box  " + words) != std::string::npos);
     CHECK(state_of(golden) == "fifo");
 
-    const Outcome bless = impulse_tool_feeding(golden, {"bless", "--root", root.string()});
+    const Outcome bless = run_tool_feeding(golden, {"bless", "--root", root.string()});
     INFO("bless stdout: " << bless.out << "\nstderr: " << bless.err);
     CHECK(bless.exit_code == 2);
     CHECK(bless.err.find(golden.string() + ": cannot be written (it is a FIFO") == 0);
@@ -414,7 +348,7 @@ TEST_CASE("A FIFO golden ends check and bless at once with an ERROR naming it",
 TEST_CASE("A FIFO scene or trajectory is refused by run, bless, render and diff",
           "[unit][output-paths]") {
     const TempDir dir;
-    const fs::path root = make_root(dir);
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
     const fs::path fifo = root / "harness" / "scenes" / "piped.json";
     REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
     const std::string golden = (root / "goldens" / "drop-box.json").string();
@@ -426,12 +360,12 @@ TEST_CASE("A FIFO scene or trajectory is refused by run, bless, render and diff"
         {"diff", golden, fifo.string()}};
     for (const std::vector<std::string>& args : commands) {
         INFO(args.front() << " " << args.at(1));
-        check_refused(impulse_tool_feeding(fifo, args), fifo.string(),
+        check_refused(run_tool_feeding(fifo, args), fifo.string(),
                       "cannot be read (it is a FIFO; impulse reads only regular files)");
         CHECK(state_of(fifo) == "fifo");
     }
     // In the canonical list it is an ERROR row, not a scene left out.
-    const Outcome check = impulse_tool_feeding(fifo, {"check", "--root", root.string()});
+    const Outcome check = run_tool_feeding(fifo, {"check", "--root", root.string()});
     CHECK(check.exit_code == 2);
     CHECK(check.out.find("  ERROR  piped     " + fifo.string() +
                          ": cannot be read (it is a FIFO") != std::string::npos);
@@ -439,7 +373,7 @@ TEST_CASE("A FIFO scene or trajectory is refused by run, bless, render and diff"
     // A symbolic link to a regular scene is still a scene.
     const fs::path link = dir.dir / "linked.json";
     fs::create_symlink(root / "harness" / "scenes" / "drop-box.json", link);
-    CHECK(impulse_tool({"run", link.string()}).exit_code == 0);
+    CHECK(run_tool({"run", link.string()}).exit_code == 0);
 }
 
 TEST_CASE("A file name that is not UTF-8 is escaped in the message", "[unit][output-paths]") {
@@ -447,12 +381,12 @@ TEST_CASE("A file name that is not UTF-8 is escaped in the message", "[unit][out
     const std::string name = "bad\xff\x01name\xc3\xa9.json"; // 0xff, a control byte, then é
     const fs::path scene = dir.dir / name;
     spit(scene, "{");
-    const Outcome o = impulse_tool({"run", scene.string()});
+    const Outcome o = run_tool({"run", scene.string()});
     const std::string shown = (dir.dir / "bad\\xff\\x01name\xc3\xa9.json").string();
     check_refused(o, shown, "not valid JSON");
 
     // The same name in check's table.
-    const Outcome check = impulse_tool({"check", scene.string(), "--root", dir.dir.string()});
+    const Outcome check = run_tool({"check", scene.string(), "--root", dir.dir.string()});
     INFO("stdout: " << check.out);
     CHECK(check.exit_code == 2);
     CHECK(valid_utf8(check.out));

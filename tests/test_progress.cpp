@@ -4,7 +4,8 @@
 // --quiet is given, and standard output is the same with and without it.
 // IMPULSE_PROGRESS_DELAY_MS=0 makes the bar appear without the usual second
 // of waiting (and at least once, however quick the work).
-#include "tool_outcome.h"
+#include "support/files.h"
+#include "support/tool.h"
 
 #include <catch2/catch.hpp>
 #include <fcntl.h>
@@ -17,13 +18,7 @@
 #include <vector>
 
 namespace fs = std::filesystem;
-using impulse::test::finish_tool;
-using impulse::test::run_tool;
-using impulse::test::ScratchDir;
-using impulse::test::slurp_file;
-using impulse::test::spawn_tool;
-using impulse::test::ToolOutcome;
-using impulse::test::write_text;
+using namespace impulse::test;
 
 namespace {
 
@@ -31,14 +26,14 @@ const std::vector<std::string> no_delay = {"IMPULSE_PROGRESS_DELAY_MS=0"};
 
 // Runs the tool with standard error on a new pseudo-terminal (standard output
 // to a file) and returns what reached the terminal as `err`.
-ToolOutcome run_on_terminal(const std::vector<std::string>& args,
-                            const std::vector<std::string>& env = no_delay) {
+Outcome run_on_terminal(const std::vector<std::string>& args,
+                        const std::vector<std::string>& env = no_delay) {
     int master = -1;
     int slave = -1;
     REQUIRE(::openpty(&master, &slave, nullptr, nullptr, nullptr) == 0);
-    const ScratchDir capture;
+    const TempDir capture;
     const std::string out_file = (capture.dir / "stdout").string();
-    const pid_t pid = spawn_tool(args, env, out_file, slave);
+    const pid_t pid = spawn_tool(args, env, out_file, "", slave);
     ::close(slave); // the child holds it now: the master sees EOF (EIO) when it exits
     std::string seen;
     char buffer[4096];
@@ -54,8 +49,7 @@ ToolOutcome run_on_terminal(const std::vector<std::string>& args,
         seen.append(buffer, static_cast<std::size_t>(n));
     }
     ::close(master);
-    ToolOutcome o = finish_tool(pid);
-    o.out = slurp_file(out_file);
+    Outcome o = outcome_of(wait_for(pid), out_file, "/dev/null");
     o.err = seen;
     return o;
 }
@@ -69,10 +63,10 @@ std::string drop_scene(const std::string& name) {
 } // namespace
 
 TEST_CASE("run draws a bar with the simulated time on a terminal and erases it", "[progress]") {
-    const ScratchDir tmp;
+    const TempDir tmp;
     const fs::path scene = tmp.dir / "drop.json";
-    write_text(scene, drop_scene("drop"));
-    const ToolOutcome o = run_on_terminal({"run", scene.string()});
+    spit(scene, drop_scene("drop"));
+    const Outcome o = run_on_terminal({"run", scene.string()});
     INFO(o.err);
     CHECK(o.exit_code == 0);
     CHECK(o.err.find("run drop") != std::string::npos);
@@ -85,46 +79,45 @@ TEST_CASE("run draws a bar with the simulated time on a terminal and erases it",
     CHECK(o.err.compare(o.err.size() - erase.size(), erase.size(), erase) == 0);
 
     SECTION("standard output is the same with the bar, without it, and with --quiet") {
-        const ToolOutcome to_file = run_tool({"run", scene.string()}, no_delay);
+        const Outcome to_file = run_tool({"run", scene.string()}, no_delay);
         CHECK(to_file.out == o.out);
         CHECK_FALSE(o.out.empty());
     }
 }
 
 TEST_CASE("no bar when standard error is a file", "[progress]") {
-    const ScratchDir tmp;
+    const TempDir tmp;
     const fs::path scene = tmp.dir / "drop.json";
-    write_text(scene, drop_scene("drop"));
-    const ToolOutcome o = run_tool({"run", scene.string()}, no_delay);
+    spit(scene, drop_scene("drop"));
+    const Outcome o = run_tool({"run", scene.string()}, no_delay);
     CHECK(o.exit_code == 0);
     CHECK(o.err.empty());
 }
 
 TEST_CASE("no bar with --quiet, even on a terminal", "[progress]") {
-    const ScratchDir tmp;
+    const TempDir tmp;
     const fs::path scene = tmp.dir / "drop.json";
-    write_text(scene, drop_scene("drop"));
-    const ToolOutcome quiet = run_on_terminal({"run", scene.string(), "--quiet"});
+    spit(scene, drop_scene("drop"));
+    const Outcome quiet = run_on_terminal({"run", scene.string(), "--quiet"});
     CHECK(quiet.exit_code == 0);
     CHECK(quiet.err.empty());
-    const ToolOutcome loud = run_on_terminal({"run", scene.string()});
+    const Outcome loud = run_on_terminal({"run", scene.string()});
     CHECK(quiet.out == loud.out);
 }
 
 TEST_CASE("no bar when the work ends before the delay", "[progress]") {
     // The default delay is about a second; this run takes milliseconds.
-    const ScratchDir tmp;
+    const TempDir tmp;
     const fs::path scene = tmp.dir / "drop.json";
-    write_text(scene, drop_scene("drop"));
-    const ToolOutcome o =
-        run_on_terminal({"run", scene.string()}, {"IMPULSE_PROGRESS_DELAY_MS=60000"});
+    spit(scene, drop_scene("drop"));
+    const Outcome o = run_on_terminal({"run", scene.string()}, {"IMPULSE_PROGRESS_DELAY_MS=60000"});
     CHECK(o.exit_code == 0);
     CHECK(o.err.empty());
 }
 
 TEST_CASE("every long verb counts its items on a terminal, and --quiet silences it", "[progress]") {
-    const ScratchDir root;
-    write_text(root.dir / "harness" / "scenes" / "drop.json", drop_scene("drop"));
+    const TempDir root;
+    spit(root.dir / "harness" / "scenes" / "drop.json", drop_scene("drop"));
     fs::create_directories(root.dir / "goldens");
     const std::string r = root.dir.string();
     const std::string scene = (root.dir / "harness" / "scenes" / "drop.json").string();
@@ -149,14 +142,14 @@ TEST_CASE("every long verb counts its items on a terminal, and --quiet silences 
         {{"stress", "--case", "size-50"}, "stress 1/1 cases size-50"},
     };
     for (const Verb& v : verbs) {
-        const ToolOutcome shown = run_on_terminal(v.args);
+        const Outcome shown = run_on_terminal(v.args);
         INFO(v.args.front() << ": " << shown.err);
         CHECK(shown.exit_code == 0);
         CHECK(shown.err.find(v.shows) != std::string::npos);
 
         std::vector<std::string> quiet_args = v.args;
         quiet_args.push_back("--quiet");
-        const ToolOutcome quiet = run_on_terminal(quiet_args);
+        const Outcome quiet = run_on_terminal(quiet_args);
         CHECK(quiet.exit_code == 0);
         CHECK(quiet.err.find(v.shows) == std::string::npos);
         CHECK(quiet.err.find('\r') == std::string::npos);

@@ -4,7 +4,8 @@
 //  - an expectation whose quantity or tolerance is not finite fails;
 //  - a scene that could tunnel without ccd is refused (run, check, bless,
 //    render, box2d) or warned about (sweep), with the safe dt.
-#include "tool_outcome.h"
+#include "support/files.h"
+#include "support/tool.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -14,10 +15,7 @@
 #include <vector>
 
 namespace fs = std::filesystem;
-using impulse::test::run_tool;
-using impulse::test::ScratchDir;
-using impulse::test::ToolOutcome;
-using impulse::test::write_text;
+using namespace impulse::test;
 
 namespace {
 
@@ -32,7 +30,7 @@ std::string ball_scene(const std::string& ball, const std::string& extra = "") {
 const std::string plain_ball = R"("shape":{"circle":0.5},"mass":1,"position":[0,1])";
 
 // One line, no stack trace, no abort.
-void require_one_sentence(const ToolOutcome& o) {
+void require_one_sentence(const Outcome& o) {
     INFO(o.err);
     REQUIRE(o.exited);
     CHECK(o.exit_code == 2);
@@ -51,40 +49,39 @@ std::string four_digits(double value) {
 // ---------------------------------------------------------------- item 2: single precision
 
 TEST_CASE("box2d refuses a 1e39 kg ball with a sentence instead of aborting", "[refusals]") {
-    const ScratchDir tmp;
+    const TempDir tmp;
     const fs::path scene = tmp.dir / "m.json";
-    write_text(scene, ball_scene(R"("shape":{"circle":0.5},"mass":1e39,"position":[0,1])"));
+    spit(scene, ball_scene(R"("shape":{"circle":0.5},"mass":1e39,"position":[0,1])"));
 
-    const ToolOutcome o = run_tool({"box2d", scene.string()});
+    const Outcome o = run_tool({"box2d", scene.string()});
     require_one_sentence(o);
     CHECK(o.err.rfind(scene.string() + ": bodies[1].mass: ", 0) == 0);
     CHECK(o.err.find("1e39 kg") != std::string::npos);
     CHECK(o.err.find("beyond Box2D's single precision (max 3.4e38") != std::string::npos);
 
     // The impulse engine is double precision: the same scene runs there.
-    const ToolOutcome run = run_tool({"run", scene.string()});
+    const Outcome run = run_tool({"run", scene.string()});
     INFO(run.err);
     CHECK(run.exit_code == 0);
 }
 
 TEST_CASE("box2d refuses the issue's scene as given, with no observables", "[refusals]") {
-    const ScratchDir tmp;
+    const TempDir tmp;
     const fs::path scene = tmp.dir / "m.json";
-    write_text(
+    spit(
         scene,
         R"({"schema":"impulse/scene@1","name":"m","dt":0.01,"duration":0.5,"bodies":[{"name":"ground","static":true,"shape":{"box":[5,0.5]},"position":[0,-0.5]},{"name":"ball","shape":{"circle":0.5},"mass":1e39,"position":[0,1]}]})");
-    const ToolOutcome o = run_tool({"box2d", scene.string()});
+    const Outcome o = run_tool({"box2d", scene.string()});
     require_one_sentence(o);
     CHECK(o.err.rfind(scene.string() + ": bodies[1].mass: ", 0) == 0);
 }
 
 TEST_CASE("sweep refuses a scene Box2D cannot represent before any point runs", "[refusals]") {
-    const ScratchDir tmp;
+    const TempDir tmp;
     const fs::path scene = tmp.dir / "m.json";
-    write_text(scene, ball_scene(R"("shape":{"circle":0.5},"mass":1e39,"position":[0,1])"));
-    const ToolOutcome o =
-        run_tool({"sweep", scene.string(), "--dt", "0.01", "--integrator", "verlet", "--toi",
-                  "secant", "--toi-tolerance", "1e-9", "--repeats", "1"});
+    spit(scene, ball_scene(R"("shape":{"circle":0.5},"mass":1e39,"position":[0,1])"));
+    const Outcome o = run_tool({"sweep", scene.string(), "--dt", "0.01", "--integrator", "verlet",
+                                "--toi", "secant", "--toi-tolerance", "1e-9", "--repeats", "1"});
     require_one_sentence(o);
     CHECK(o.err.find("bodies[1].mass") != std::string::npos);
     CHECK(o.out.empty());
@@ -130,10 +127,10 @@ TEST_CASE("every quantity Box2D would hold in a float is checked, huge and tiny"
     };
     for (const Case& c : cases) {
         SECTION(c.what) {
-            const ScratchDir tmp;
+            const TempDir tmp;
             const fs::path scene = tmp.dir / "m.json";
-            write_text(scene, ball_scene(c.ball, c.scene_keys));
-            const ToolOutcome o = run_tool({"box2d", scene.string()});
+            spit(scene, ball_scene(c.ball, c.scene_keys));
+            const Outcome o = run_tool({"box2d", scene.string()});
             INFO(c.what << ": " << o.err);
             require_one_sentence(o);
             CHECK(o.err.rfind(scene.string() + ": " + c.path + ": ", 0) == 0);
@@ -143,10 +140,10 @@ TEST_CASE("every quantity Box2D would hold in a float is checked, huge and tiny"
 }
 
 TEST_CASE("box2d still runs a plain scene", "[refusals]") {
-    const ScratchDir tmp;
+    const TempDir tmp;
     const fs::path scene = tmp.dir / "m.json";
-    write_text(scene, ball_scene(plain_ball));
-    const ToolOutcome o = run_tool({"box2d", scene.string()});
+    spit(scene, ball_scene(plain_ball));
+    const Outcome o = run_tool({"box2d", scene.string()});
     INFO(o.err);
     CHECK(o.exit_code == 0);
 }
@@ -165,41 +162,40 @@ std::string free_scene(const std::string& body, const std::string& expectation,
 } // namespace
 
 TEST_CASE("an expectation whose quantity overflows to infinity fails", "[refusals]") {
-    const ScratchDir tmp;
+    const TempDir tmp;
     const fs::path scene = tmp.dir / "x.json";
     const std::string euler = R"(,"solver":{"integrator":"euler"})";
     const std::string energy = R"({"kind":"energy-non-increasing","rtol":1e-15})";
 
     SECTION("energy-non-increasing: 1/2 1e300 kg (1e5 m/s)^2 is inf") {
-        write_text(scene, free_scene(R"("mass":1e300,"velocity":[1e5,0])", energy, euler));
-        const ToolOutcome o = run_tool({"run", scene.string(), "--out", (tmp.dir / "t").string()});
+        spit(scene, free_scene(R"("mass":1e300,"velocity":[1e5,0])", energy, euler));
+        const Outcome o = run_tool({"run", scene.string(), "--out", (tmp.dir / "t").string()});
         INFO(o.err);
         CHECK(o.exit_code == 1);
         CHECK(o.err.find("expectations[0]") != std::string::npos);
         CHECK(o.err.find("not finite") != std::string::npos);
     }
     SECTION("the same expectation with mass 1 holds (free flight keeps its energy)") {
-        write_text(scene, free_scene(R"("mass":1,"velocity":[1e5,0])", energy, euler));
-        const ToolOutcome o = run_tool({"run", scene.string(), "--out", (tmp.dir / "t").string()});
+        spit(scene, free_scene(R"("mass":1,"velocity":[1e5,0])", energy, euler));
+        const Outcome o = run_tool({"run", scene.string(), "--out", (tmp.dir / "t").string()});
         INFO(o.err);
         CHECK(o.exit_code == 0);
     }
     SECTION("conserved momentum: 1e300 kg at 1e10 m/s is inf") {
-        write_text(scene,
-                   free_scene(R"("mass":1e300,"velocity":[1e10,0])",
-                              R"({"kind":"conserved","quantities":["momentum"],"rtol":1e-12})"));
-        const ToolOutcome o = run_tool({"run", scene.string(), "--out", (tmp.dir / "t").string()});
+        spit(scene, free_scene(R"("mass":1e300,"velocity":[1e10,0])",
+                               R"({"kind":"conserved","quantities":["momentum"],"rtol":1e-12})"));
+        const Outcome o = run_tool({"run", scene.string(), "--out", (tmp.dir / "t").string()});
         INFO(o.err);
         CHECK(o.exit_code == 1);
         CHECK(o.err.find("momentum") != std::string::npos);
     }
     SECTION("state: a tolerance atol + rtol |x| that overflows lets nothing pass") {
         // x = 2 exactly, but 1.7e308 + 1.7e308 * 2 is inf: the check cannot be computed.
-        write_text(
+        spit(
             scene,
             free_scene(R"("mass":1,"position":[2,0])",
                        R"({"kind":"state","body":"a","t":1,"x":2,"atol":1.7e308,"rtol":1.7e308})"));
-        const ToolOutcome o = run_tool({"run", scene.string(), "--out", (tmp.dir / "t").string()});
+        const Outcome o = run_tool({"run", scene.string(), "--out", (tmp.dir / "t").string()});
         INFO(o.err);
         CHECK(o.exit_code == 1);
         CHECK(o.err.find("not finite") != std::string::npos);
@@ -210,24 +206,24 @@ TEST_CASE("an event expectation whose tolerance overflows fails", "[refusals]") 
     // Whatever impulse the landing takes, the allowance 1.7e308 + 1.7e308 x
     // |1| (the expected value is the scale) overflows double's 1.8e308 to
     // inf, and the comparison cannot be computed.
-    const ScratchDir tmp;
+    const TempDir tmp;
     const fs::path scene = tmp.dir / "m.json";
-    write_text(
+    spit(
         scene,
         R"({"schema":"impulse/scene@1","name":"m","dt":0.01,"duration":0.5,"solver":{"integrator":"verlet"},"bodies":[{"name":"ground","static":true,"shape":{"box":[5,0.5]},"position":[0,-0.5]},{"name":"ball","shape":{"circle":0.5},"mass":1,"position":[0,1]}],"expectations":[{"kind":"event","index":0,"impulse":1,"atol":1.7e308,"rtol":1.7e308}]})");
-    const ToolOutcome o = run_tool({"run", scene.string(), "--out", (tmp.dir / "t").string()});
+    const Outcome o = run_tool({"run", scene.string(), "--out", (tmp.dir / "t").string()});
     INFO(o.err);
     CHECK(o.exit_code == 1);
     CHECK(o.err.find("not finite") != std::string::npos);
 }
 
 TEST_CASE("bless refuses a scene whose expectation overflows, and writes no golden", "[refusals]") {
-    const ScratchDir root;
-    write_text(
+    const TempDir root;
+    spit(
         root.dir / "harness" / "scenes" / "euler-gain-big.json",
         R"({"schema":"impulse/scene@1","name":"euler-gain-big","dt":0.01,"duration":1,"solver":{"integrator":"euler"},"bodies":[{"name":"a","shape":{"circle":0.5},"mass":1e300,"velocity":[1e5,0]}],"expectations":[{"kind":"energy-non-increasing","rtol":1e-15}]})");
     fs::create_directories(root.dir / "goldens");
-    const ToolOutcome o = run_tool({"bless", "--root", root.dir.string()});
+    const Outcome o = run_tool({"bless", "--root", root.dir.string()});
     INFO(o.out << o.err);
     CHECK(o.exit_code == 1);
     CHECK(o.out.find("REFUSED") != std::string::npos);
@@ -253,11 +249,11 @@ TEST_CASE("run refuses a scene that gravity makes tunnel, with the safe dt", "[r
     // ground's top, y = 0: h = 0.5 m, so it can arrive at sqrt(2 g h) m/s
     // (g * duration = 5e8 is larger). The pair's thickness is 2 (0.5 + 0.5)
     // = 2 m, so dt must be below 2 / sqrt(2 g h).
-    const ScratchDir tmp;
+    const TempDir tmp;
     const fs::path scene = tmp.dir / "m.json";
-    write_text(scene, ball_scene(plain_ball, R"(,"gravity":[0,-1e9])"));
+    spit(scene, ball_scene(plain_ball, R"(,"gravity":[0,-1e9])"));
     const fs::path out = tmp.dir / "out.json";
-    const ToolOutcome o = run_tool({"run", scene.string(), "--out", out.string()});
+    const Outcome o = run_tool({"run", scene.string(), "--out", out.string()});
     require_one_sentence(o);
     CHECK(o.err.rfind(scene.string() + ": bodies[1]: ", 0) == 0);
     CHECK(o.err.find("'ball' and 'ground'") != std::string::npos);
@@ -272,20 +268,20 @@ TEST_CASE("a long run under gravity is bounded by its drop, not by g times its d
     // 60 s at 1/60: g * duration is 589 m/s, 9.8 m per step, past the 2 m
     // thickness; but a ball bouncing on the ground never falls more than
     // h = 0.5 m, sqrt(2 g h) = 3.1 m/s, 0.05 m per step: not refused.
-    const ScratchDir tmp;
+    const TempDir tmp;
     const fs::path scene = tmp.dir / "m.json";
-    write_text(
+    spit(
         scene,
         R"({"schema":"impulse/scene@1","name":"m","dt":0.016666666666666666,"duration":60,"restitution":1,"solver":{"integrator":"verlet"},"bodies":[{"name":"ground","static":true,"shape":{"box":[5,0.5]},"position":[0,-0.5]},{"name":"ball","shape":{"circle":0.5},"mass":1,"position":[0,1]}]})");
-    const ToolOutcome o = run_tool({"run", scene.string(), "--out", (tmp.dir / "t").string()});
+    const Outcome o = run_tool({"run", scene.string(), "--out", (tmp.dir / "t").string()});
     INFO(o.err);
     CHECK(o.exit_code == 0);
 }
 
 TEST_CASE("every verb that simulates refuses a disc at 1e15 m/s through a wall", "[refusals]") {
-    const ScratchDir root;
+    const TempDir root;
     const fs::path scene = root.dir / "harness" / "scenes" / "fast.json";
-    write_text(scene, bullet_scene("fast", false));
+    spit(scene, bullet_scene("fast", false));
     fs::create_directories(root.dir / "goldens");
     const std::string safe = "dt below " + four_digits(2.0 * (0.05 + 0.02) / 1e15) + " s";
     const std::string r = root.dir.string();
@@ -295,7 +291,7 @@ TEST_CASE("every verb that simulates refuses a disc at 1e15 m/s through a wall",
              {"bless", "--root", r, "fast"},
              {"box2d", "--root", r, "fast"},
              {"render", scene.string(), "--out", (root.dir / "fast.svg").string()}}) {
-        const ToolOutcome o = run_tool(args);
+        const Outcome o = run_tool(args);
         INFO(args.front() << ": " << o.err);
         require_one_sentence(o);
         CHECK(o.err.find(scene.string() + ": bodies[1]: 'bullet' and 'wall'") != std::string::npos);
@@ -305,7 +301,7 @@ TEST_CASE("every verb that simulates refuses a disc at 1e15 m/s through a wall",
     CHECK_FALSE(fs::exists(root.dir / "fast.svg"));
 
     // check puts the sentence in the scene's ERROR row.
-    const ToolOutcome check = run_tool({"check", "--root", r, "fast"});
+    const Outcome check = run_tool({"check", "--root", r, "fast"});
     INFO(check.out);
     CHECK(check.exit_code == 2);
     CHECK(check.out.find("ERROR") != std::string::npos);
@@ -313,21 +309,21 @@ TEST_CASE("every verb that simulates refuses a disc at 1e15 m/s through a wall",
 }
 
 TEST_CASE("with ccd on the same disc is not refused for tunnelling", "[refusals]") {
-    const ScratchDir tmp;
+    const TempDir tmp;
     const fs::path scene = tmp.dir / "fast.json";
-    write_text(scene, bullet_scene("fast", true));
-    const ToolOutcome o = run_tool({"run", scene.string(), "--out", (tmp.dir / "t").string()});
+    spit(scene, bullet_scene("fast", true));
+    const Outcome o = run_tool({"run", scene.string(), "--out", (tmp.dir / "t").string()});
     INFO(o.err);
     CHECK(o.err.find("tunnelling") == std::string::npos);
 }
 
 TEST_CASE("sweep warns per time step that can tunnel and still runs", "[refusals]") {
-    const ScratchDir tmp;
+    const TempDir tmp;
     const fs::path scene = tmp.dir / "fast.json";
-    write_text(scene, bullet_scene("fast", false));
-    const ToolOutcome o = run_tool({"sweep", scene.string(), "--dt", "0.01,0.005", "--integrator",
-                                    "verlet", "--toi", "secant", "--toi-tolerance", "1e-9", "--ccd",
-                                    "off,on", "--no-box2d", "--repeats", "1"});
+    spit(scene, bullet_scene("fast", false));
+    const Outcome o = run_tool({"sweep", scene.string(), "--dt", "0.01,0.005", "--integrator",
+                                "verlet", "--toi", "secant", "--toi-tolerance", "1e-9", "--ccd",
+                                "off,on", "--no-box2d", "--repeats", "1"});
     INFO(o.err);
     CHECK(o.exit_code == 0);
     // One warning per dt run with ccd off, none for the ccd points.

@@ -7,6 +7,7 @@
 #include "report.h"
 #include "run.h"
 #include "scene.h"
+#include "support/files.h"
 #include "trajectory.h"
 
 #include <catch2/catch.hpp>
@@ -19,6 +20,7 @@
 
 namespace fs = std::filesystem;
 using namespace impulse::harness;
+using impulse::test::slurp;
 
 namespace {
 
@@ -99,13 +101,6 @@ std::pair<double, double> first_point(const std::string& svg, const std::string&
     char comma = 0;
     in >> x >> comma >> y;
     return {x, y};
-}
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
 }
 
 fs::path temp_path(const std::string& name) {

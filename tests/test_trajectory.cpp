@@ -4,6 +4,7 @@
 #include "input_error.h"
 #include "number_format.h"
 #include "sha256.h"
+#include "support/trajectories.h"
 #include "trajectory.h"
 
 #include <array>
@@ -18,6 +19,7 @@
 #include <vector>
 
 using namespace impulse::harness;
+using impulse::test::make_event;
 
 namespace {
 
@@ -48,23 +50,6 @@ bool same_bits(double a, double b) {
 std::array<double, 8> event_numbers(const TrajectoryEvent& e) {
     return {e.t,         e.point[0], e.point[1],  e.normal[0],
             e.normal[1], e.impulse,  e.vn_before, e.vn_after};
-}
-
-TrajectoryEvent make_event(double t, const std::string& a, const std::string& b, double px,
-                           double py, double nx, double ny, double impulse, double vn_before,
-                           double vn_after) {
-    TrajectoryEvent event;
-    event.t = t;
-    event.a = a;
-    event.b = b;
-    event.point[0] = px;
-    event.point[1] = py;
-    event.normal[0] = nx;
-    event.normal[1] = ny;
-    event.impulse = impulse;
-    event.vn_before = vn_before;
-    event.vn_after = vn_after;
-    return event;
 }
 
 // A box dropped on the ground, with a -0.0, a tiny and a denormal value among
