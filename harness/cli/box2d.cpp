@@ -10,6 +10,7 @@
 #include "observables.h"
 #include "output_path.h"
 #include "progress.h"
+#include "record.h"
 #include "run.h"
 #include "simulator.h"
 #include "single_precision.h"

@@ -1,4 +1,4 @@
-// `impulse stress`: the extremes matrix (harness/stress.h) as a table or JSON.
+// `impulse stress`: the extremes matrix (harness/study/stress.h) as a table or JSON.
 #include "stress.h"
 
 #include "cli.h"

@@ -1,4 +1,4 @@
-// `impulse sweep SCENE`: the speed/accuracy trade (harness/sweep.h) as a
+// `impulse sweep SCENE`: the speed/accuracy trade (harness/study/sweep.h) as a
 // table, JSON, CSV and an SVG plot of error against cost.
 #include "sweep.h"
 
