@@ -43,6 +43,9 @@ Arguments parse_arguments(const std::vector<std::string>& args,
 
 // A strictly parsed positive finite number of seconds, or UsageError naming the option.
 double positive_seconds(const std::string& option, const std::string& text);
+// The items of a comma-separated LIST option (--dt 0.01,0.005), or UsageError
+// for an empty item.
+std::vector<std::string> comma_list(const std::string& text);
 
 int main(int argc, char** argv);
 // One function per verb; each returns the exit code and throws InputError or

@@ -9,6 +9,7 @@
 #include "output_path.h"
 #include "progress.h"
 #include "render.h"
+#include "text.h"
 
 #include <algorithm>
 #include <charconv>
@@ -79,19 +80,6 @@ together) dominating every point of Box2D's.
 A LIST is comma-separated, e.g. --dt 0.01,0.005. Exit 0, or 2 for bad input.
 )";
 
-std::vector<std::string> split(const std::string& text) {
-    std::vector<std::string> parts;
-    std::string part;
-    std::istringstream in(text);
-    while (std::getline(in, part, ',')) {
-        parts.push_back(part);
-    }
-    if (parts.empty() || (!text.empty() && text.back() == ',')) {
-        throw UsageError("empty item in list '" + text + "'");
-    }
-    return parts;
-}
-
 int whole_number(const std::string& option, const std::string& text) {
     int value = 0;
     const char* end = text.data() + text.size();
@@ -106,13 +94,13 @@ SweepConfig config_from(const Arguments& a, const Scene& scene) {
     SweepConfig config = default_sweep_config(scene);
     if (const auto list = a.option("--dt")) {
         config.dts.clear();
-        for (const std::string& item : split(*list)) {
+        for (const std::string& item : comma_list(*list)) {
             config.dts.push_back(positive_seconds("--dt", item));
         }
     }
     if (const auto list = a.option("--integrator")) {
         config.integrators.clear();
-        for (const std::string& item : split(*list)) {
+        for (const std::string& item : comma_list(*list)) {
             Integrator integrator{};
             if (!integrator_from_name(item, integrator)) {
                 throw UsageError(
@@ -124,7 +112,7 @@ SweepConfig config_from(const Arguments& a, const Scene& scene) {
     }
     if (const auto list = a.option("--toi")) {
         config.toi_methods.clear();
-        for (const std::string& item : split(*list)) {
+        for (const std::string& item : comma_list(*list)) {
             TimeOfImpactMethod method{};
             if (!toi_method_from_name(item, method)) {
                 throw UsageError("--toi takes bisection or secant, got '" + item + "'");
@@ -134,13 +122,13 @@ SweepConfig config_from(const Arguments& a, const Scene& scene) {
     }
     if (const auto list = a.option("--toi-tolerance")) {
         config.toi_tolerances.clear();
-        for (const std::string& item : split(*list)) {
+        for (const std::string& item : comma_list(*list)) {
             config.toi_tolerances.push_back(positive_seconds("--toi-tolerance", item));
         }
     }
     if (const auto list = a.option("--ccd")) {
         config.ccd.clear();
-        for (const std::string& item : split(*list)) {
+        for (const std::string& item : comma_list(*list)) {
             if (item != "off" && item != "on") {
                 throw UsageError("--ccd takes off or on, got '" + item + "'");
             }
@@ -149,13 +137,13 @@ SweepConfig config_from(const Arguments& a, const Scene& scene) {
     }
     if (const auto list = a.option("--box2d-substeps")) {
         config.box2d_substeps.clear();
-        for (const std::string& item : split(*list)) {
+        for (const std::string& item : comma_list(*list)) {
             config.box2d_substeps.push_back(whole_number("--box2d-substeps", item));
         }
     }
     if (const auto list = a.option("--box2d-iterations")) {
         config.box2d_iterations.clear();
-        for (const std::string& item : split(*list)) {
+        for (const std::string& item : comma_list(*list)) {
             const std::size_t slash = item.find('/');
             if (slash == std::string::npos) {
                 throw UsageError("--box2d-iterations takes VELOCITY/POSITION, e.g. 8/3, got '" +
@@ -192,14 +180,6 @@ std::string sci(double value, int digits = 2) {
     char buffer[64];
     std::snprintf(buffer, sizeof buffer, "%.*e", digits, value);
     return buffer;
-}
-
-std::string pad(std::string text, std::size_t width, bool right = false) {
-    if (text.size() < width) {
-        text = right ? std::string(width - text.size(), ' ') + text
-                     : text + std::string(width - text.size(), ' ');
-    }
-    return text;
 }
 
 std::string settings_of(const SweepPoint& p) {
@@ -320,22 +300,25 @@ void write_table(const SweepResult& r, std::ostream& out) {
     for (const SweepPoint& p : r.points) {
         method_width = std::max(method_width, p.family.size() + 2);
     }
-    out << pad("method", method_width) << pad("dt", 7) << pad("settings", 17)
-        << pad("error", 10, true) << pad("cost", 11, true) << pad("+-", 10, true)
-        << pad("steps", 9, true) << pad("narrow", 10, true) << pad("toi_it", 9, true) << "\n";
+    out << padded("method", method_width) << padded("dt", 7) << padded("settings", 17)
+        << padded("error", 10, true) << padded("cost", 11, true) << padded("+-", 10, true)
+        << padded("steps", 9, true) << padded("narrow", 10, true) << padded("toi_it", 9, true)
+        << "\n";
     for (const SweepPoint& p : r.points) {
-        out << pad(p.family, method_width) << pad(dt_text(p.dt), 7) << pad(settings_of(p), 17);
+        out << padded(p.family, method_width) << padded(dt_text(p.dt), 7)
+            << padded(settings_of(p), 17);
         if (!p.ok) {
             out << "  FAILED: " << p.failure << "\n";
             continue;
         }
-        out << pad(sci(p.error), 10, true) << pad(sci(p.cost_median), 11, true)
-            << pad(sci(p.cost_spread, 1), 10, true) << pad(std::to_string(p.work.steps), 9, true);
+        out << padded(sci(p.error), 10, true) << padded(sci(p.cost_median), 11, true)
+            << padded(sci(p.cost_spread, 1), 10, true)
+            << padded(std::to_string(p.work.steps), 9, true);
         if (p.box2d) {
-            out << pad("-", 10, true) << pad("-", 9, true);
+            out << padded("-", 10, true) << padded("-", 9, true);
         } else {
-            out << pad(std::to_string(p.work.narrow_phase_queries), 10, true)
-                << pad(std::to_string(p.work.toi_iterations), 9, true);
+            out << padded(std::to_string(p.work.narrow_phase_queries), 10, true)
+                << padded(std::to_string(p.work.toi_iterations), 9, true);
         }
         out << (p.on_front ? " *" : "") << (p.work_identical ? "" : " (work varied!)") << "\n";
     }

@@ -12,6 +12,7 @@
 #include "progress.h"
 #include "rotation.h"
 #include "shape.h"
+#include "text.h"
 #include "vec2.h"
 
 #include <algorithm>
@@ -767,10 +768,6 @@ std::string solver_value(const Trajectory& trajectory, const std::string& key) {
         }
     }
     return "";
-}
-
-std::string plural(std::size_t n, const char* one, const char* many) {
-    return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
 std::string run_info(const Trajectory& trajectory) {

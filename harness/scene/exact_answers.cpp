@@ -3,6 +3,7 @@
 
 #include "manifold.h"
 #include "rotation.h"
+#include "text.h"
 
 #include <algorithm>
 #include <charconv>
@@ -23,10 +24,6 @@ std::string number_text(double value) {
 
 std::string vec2_text(Vec2 v) {
     return "(" + number_text(v.x) + ", " + number_text(v.y) + ")";
-}
-
-std::string quoted(const std::string& name) {
-    return "'" + name + "'";
 }
 
 Transform initial_transform(const SceneBody& body) {
@@ -55,11 +52,12 @@ std::optional<Refusal> gap_refusal(const Scene& scene, const SceneBody& body,
     const std::optional<double> gap = gap_to_static_ground(scene, body);
     if (!gap) {
         return refuse(Refusal::Where::body, formula + " needs static ground for " +
-                                                quoted(body.name) +
+                                                single_quoted(body.name) +
                                                 " to fall on, but every body is dynamic");
     }
     if (!(*gap > 0.0)) {
-        return refuse(Refusal::Where::body, formula + " needs a gap between " + quoted(body.name) +
+        return refuse(Refusal::Where::body, formula + " needs a gap between " +
+                                                single_quoted(body.name) +
                                                 " and the static ground at t = 0, but it "
                                                 "touches it");
     }
@@ -156,7 +154,7 @@ std::optional<Refusal> drop_refusal(const Scene& scene, const SceneBody& body,
     if (std::optional<Refusal> gravity = gravity_refusal(scene, formula, false)) {
         return gravity;
     }
-    const std::string name = quoted(body.name);
+    const std::string name = single_quoted(body.name);
     if (body.velocity != Vec2{}) {
         return refuse(Refusal::Where::body, formula + " needs the body at rest at t = 0, but " +
                                                 name + " has velocity " + vec2_text(body.velocity));
@@ -184,7 +182,7 @@ std::optional<Refusal> drop_refusal(const Scene& scene, const SceneBody& body,
 
 std::optional<Refusal> corner_impact_refusal(const Scene& scene, const SceneBody& body,
                                              const std::string& formula) {
-    const std::string name = quoted(body.name);
+    const std::string name = single_quoted(body.name);
     if (body.shape.type != ShapeType::polygon) {
         return refuse(Refusal::Where::body,
                       formula + " needs a polygon, but " + name + " is a circle");
@@ -252,7 +250,7 @@ std::optional<Refusal> head_on_refusal(const Scene& scene, const SceneBody& a, c
     const Vec2 u = (1.0 / length(line)) * line;
     const Vec2 relative = a.velocity - b.velocity;
     const double closing = dot(relative, u);
-    const std::string pair = quoted(a.name) + " and " + quoted(b.name);
+    const std::string pair = single_quoted(a.name) + " and " + single_quoted(b.name);
     if (!(closing > 0.0)) {
         return refuse(Refusal::Where::entry,
                       formula + " needs " + pair +

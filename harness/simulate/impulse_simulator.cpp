@@ -4,6 +4,7 @@
 #include "number_format.h"
 #include "progress.h"
 #include "simulator.h"
+#include "text.h"
 #include "world.h"
 
 #include <cmath>
@@ -12,10 +13,6 @@
 namespace impulse::harness {
 
 namespace {
-
-std::string quoted(const std::string& s) {
-    return "\"" + s + "\"";
-}
 
 Body body_from(const SceneBody& spec) {
     Body body;
@@ -51,12 +48,12 @@ class ImpulseSimulator final : public Simulator {
     std::vector<std::pair<std::string, std::string>> settings() const override {
         const SolverSettings& s = scene_.solver;
         std::vector<std::pair<std::string, std::string>> settings = {
-            {"integrator", quoted(integrator_name(s.integrator))},
-            {"toi", quoted(toi_method_name(s.toi))},
+            {"integrator", double_quoted(integrator_name(s.integrator))},
+            {"toi", double_quoted(toi_method_name(s.toi))},
             {"dt", format_double(scene_.dt)},
             {"toi_tolerance", format_double(s.toi_tolerance)},
             {"contact_tolerance", format_double(s.contact_tolerance)},
-            {"contacts", quoted(contact_mode_name(s.contacts))},
+            {"contacts", double_quoted(contact_mode_name(s.contacts))},
             {"ccd", s.ccd ? "true" : "false"},
             {"resting", s.resting ? "true" : "false"},
         };
@@ -65,10 +62,11 @@ class ImpulseSimulator final : public Simulator {
         // writes the same bytes as before the key existed, so every golden
         // blessed earlier stays byte-identical (docs/formats.md).
         if (s.stepping != Stepping::world) {
-            settings.emplace_back("stepping", quoted(stepping_name(s.stepping)));
+            settings.emplace_back("stepping", double_quoted(stepping_name(s.stepping)));
         }
         if (s.vertex_normal != VertexNormal::reference_face) {
-            settings.emplace_back("vertex_normal", quoted(vertex_normal_name(s.vertex_normal)));
+            settings.emplace_back("vertex_normal",
+                                  double_quoted(vertex_normal_name(s.vertex_normal)));
         }
         return settings;
     }
