@@ -5,6 +5,7 @@
 #include "cli.h"
 #include "gate.h"
 #include "input_error.h"
+#include "markup.h"
 #include "number_format.h"
 #include "output_path.h"
 #include "progress.h"

@@ -7,6 +7,7 @@
 
 #include "atomic_file.h"
 #include "input_error.h"
+#include "markup.h"
 #include "number_format.h"
 #include "render.h"
 #include "text.h"
