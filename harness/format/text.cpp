@@ -3,6 +3,7 @@
 #include "number_format.h"
 
 #include <cmath>
+#include <cstdio>
 
 namespace impulse::harness {
 
@@ -24,6 +25,12 @@ std::string padded(std::string text, std::size_t width, bool right) {
                      : text + std::string(width - text.size(), ' ');
     }
     return text;
+}
+
+std::string fixed_text(double value, int digits) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.*f", digits, value);
+    return buffer;
 }
 
 std::string sentence_number(double value) {

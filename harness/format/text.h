@@ -17,6 +17,8 @@ std::string plural(std::size_t n, const char* one, const char* many);
 // Text padded with spaces to width, on the right (default) or on the left
 // (right = true, for numbers); longer text is left as it is.
 std::string padded(std::string text, std::size_t width, bool right = false);
+// Fixed-point with `digits` decimals, locale-free (tables, SVG coordinates).
+std::string fixed_text(double value, int digits);
 // A number for a sentence: format_double's shortest round trip, and also
 // what format_double refuses ("NaN", "inf", "-inf").
 std::string sentence_number(double value);
