@@ -5,6 +5,7 @@
 #include "memory_budget.h"
 #include "number_format.h"
 #include "progress.h"
+#include "trajectory_columns.h"
 
 #include <cstdint>
 #include <utility>
@@ -25,7 +26,7 @@ Trajectory record(Simulator& simulator, const Scene& scene) {
             continue;
         }
         dynamic.push_back(static_cast<int>(i));
-        for (const char* channel : {".x", ".y", ".angle", ".vx", ".vy", ".omega"}) {
+        for (const char* channel : body_channel_suffixes) {
             trajectory.columns.push_back(scene.bodies[i].name + channel);
         }
     }
