@@ -15,6 +15,7 @@
 #include "fuzz_support.h"
 #include "input_error.h"
 #include "number_format.h"
+#include "record.h"
 #include "simulator.h"
 
 #include <algorithm>

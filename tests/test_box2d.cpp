@@ -6,6 +6,7 @@
 
 #include "box2d_simulator.h"
 #include "input_error.h"
+#include "record.h"
 #include "scene.h"
 #include "simulator.h"
 #include "trajectory.h"

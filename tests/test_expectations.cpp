@@ -1,4 +1,4 @@
-// Expectations a scene declares (harness/expectations.h): every kind on small
+// Expectations a scene declares (harness/gate/expectations.h): every kind on small
 // trajectories written by hand from the physics, passing as given and failing
 // when one value moves just beyond its tolerance; then the exact answers of
 // PHYSICS.md against real runs of the engine.

@@ -1,4 +1,4 @@
-// The observables `impulse box2d` compares (harness/observables.h) on small
+// The observables `impulse box2d` compares (harness/study/observables.h) on small
 // trajectories written by hand: one "impulse" run and one "Box2D" run of the
 // same scene, each value derived in the comments beside it from the physics
 // and the hand-made frames, never copied from a program's output. Most numbers

@@ -3,6 +3,7 @@
 #include "atomic_file.h"
 #include "cli.h"
 #include "input_error.h"
+#include "markup.h"
 #include "render.h"
 #include "report.h"
 #include "run.h"

@@ -1,4 +1,4 @@
-// Extremes (issue 7; harness/stress.h): the stress matrix holds, every
+// Extremes (issue 7; harness/study/stress.h): the stress matrix holds, every
 // invariant checker catches a violation made by hand, the NaN guard names
 // what overflowed, a scene that would tunnel is refused before it runs, and
 // the per-collision energy bound the matrix uses is what rounding gives.
@@ -6,6 +6,7 @@
 #include "exact_answers.h"
 #include "input_error.h"
 #include "number_format.h"
+#include "record.h"
 #include "restitution.h"
 #include "run.h"
 #include "simulator.h"

@@ -4,6 +4,7 @@
 #include "input_error.h"
 #include "scene.h"
 #include "sweep.h"
+#include "sweep_plot.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -338,8 +339,8 @@ TEST_CASE("impulse sweep --json has one entry per grid point; the SVG is well-fo
     b.box2d = true;
     b.error = 0.0;
     fixed.points = {a, b};
-    CHECK(cli::sweep_svg(fixed) == cli::sweep_svg(fixed));
-    CHECK(well_formed_xml(cli::sweep_svg(fixed), why));
+    CHECK(sweep_svg(fixed) == sweep_svg(fixed));
+    CHECK(well_formed_xml(sweep_svg(fixed), why));
 }
 
 TEST_CASE("impulse sweep rejects bad options with a usage error", "[sweep]") {

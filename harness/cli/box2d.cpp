@@ -10,6 +10,7 @@
 #include "observables.h"
 #include "output_path.h"
 #include "progress.h"
+#include "reference_comparison.h"
 #include "run.h"
 #include "simulator.h"
 #include "single_precision.h"
@@ -77,12 +78,6 @@ int parse_count(const std::string& option, const std::string& text) {
     return value;
 }
 
-struct Options {
-    std::optional<double> dt;
-    std::optional<int> substeps, velocity_iterations, position_iterations;
-    bool scene_integrator = false;
-};
-
 #ifdef IMPULSE_WITH_BOX2D
 // About six significant digits: a table is read, not parsed.
 std::string short_number(std::optional<double> value) {
@@ -94,136 +89,6 @@ std::string short_number(std::optional<double> value) {
     return buffer;
 }
 
-// One scene compared: everything both outputs show.
-struct Comparison {
-    std::string name;
-    std::string file;
-    double dt = 0.0;
-    std::string integrator;       // the impulse run's
-    std::string scene_integrator; // the scene's own
-    Box2dSettings box2d;          // as run, observables included
-    std::string impulse_engine;
-    std::string box2d_engine;
-    std::vector<std::string> warnings;
-    std::string stopped; // why and where the comparison ends early, when it does
-    std::vector<ObservableRow> rows;
-    // Both runs, as compared, for --out (so impulse diff and render work on them).
-    std::optional<Trajectory> impulse_run;
-    std::optional<Trajectory> box2d_run;
-
-    std::size_t outside() const {
-        return static_cast<std::size_t>(std::count_if(
-            rows.begin(), rows.end(), [](const ObservableRow& r) { return !r.within; }));
-    }
-    bool passed() const { return outside() == 0; }
-};
-
-// The impulse engine refuses to go on where the seed model ends (a Zeno
-// cascade, a resting contact: README, "Canonical scenes"). Scenes end before
-// that with their own integrator; symplectic Euler loses a little speed in
-// every flight, so its bounces die out sooner and can reach the limit inside
-// the scene. The run then stops at the last step it completed and both runs
-// are compared up to there: the observables of the bounces before are sound.
-class StoppingSimulator final : public Simulator {
-  public:
-    explicit StoppingSimulator(std::unique_ptr<Simulator> inner) : inner_(std::move(inner)) {}
-
-    std::string engine() const override { return inner_->engine(); }
-    std::vector<std::pair<std::string, std::string>> settings() const override {
-        return inner_->settings();
-    }
-    void step(double t0, double dt) override {
-        if (stopped_at_) {
-            return;
-        }
-        try {
-            inner_->step(t0, dt);
-        } catch (const InputError& error) {
-            stopped_at_ = t0;
-            reason_ = error.what();
-        }
-    }
-    BodyState state(int index) const override { return inner_->state(index); }
-    std::vector<TrajectoryEvent> take_events() override { return inner_->take_events(); }
-
-    const std::optional<double>& stopped_at() const { return stopped_at_; }
-    const std::string& reason() const { return reason_; }
-
-  private:
-    std::unique_ptr<Simulator> inner_;
-    std::optional<double> stopped_at_;
-    std::string reason_;
-};
-
-// Keeps the frames and events up to time `end`.
-void truncate(Trajectory& trajectory, double end) {
-    const auto after = [end](double t) { return t > end; };
-    trajectory.frames.erase(
-        std::remove_if(trajectory.frames.begin(), trajectory.frames.end(),
-                       [&](const std::vector<double>& f) { return f.empty() || after(f.front()); }),
-        trajectory.frames.end());
-    trajectory.events.erase(std::remove_if(trajectory.events.begin(), trajectory.events.end(),
-                                           [&](const TrajectoryEvent& e) { return after(e.t); }),
-                            trajectory.events.end());
-}
-
-Comparison compare_scene(const std::string& path, const Options& options) {
-    const Scene scene = load_scene(path);
-    Comparison c;
-    c.name = scene.name;
-    c.file = scene.file;
-    c.warnings = scene.warnings;
-    c.scene_integrator = integrator_name(scene.solver.integrator);
-    // --dt is the step of both runs; the integrator is the impulse engine's only.
-    Overrides overrides;
-    overrides.dt = options.dt;
-    Scene box2d_scene = with_overrides(scene, overrides);
-    Box2dSettings& settings = box2d_scene.box2d;
-    settings.substeps = options.substeps.value_or(settings.substeps);
-    settings.velocity_iterations =
-        options.velocity_iterations.value_or(settings.velocity_iterations);
-    settings.position_iterations =
-        options.position_iterations.value_or(settings.position_iterations);
-    // A scene Box2D cannot represent is refused even when it names nothing
-    // to compare: asked to run it in Box2D, the answer is that it cannot.
-    require_single_precision(box2d_scene, "Box2D",
-                             box2d_scene.dt / static_cast<double>(settings.substeps));
-    if (scene.box2d.observables.empty()) {
-        return c;
-    }
-    if (!options.scene_integrator) {
-        overrides.integrator = Integrator::symplectic_euler;
-    }
-    const Scene impulse_scene = with_overrides(scene, overrides);
-
-    // Both refusals come before either run: a scene that would tunnel
-    // unseen, and one Box2D cannot represent (single_precision.h).
-    std::vector<std::string> warnings;
-    const std::unique_ptr<Simulator> box2d_simulator = make_box2d_simulator(box2d_scene, warnings);
-    refuse_tunnelling(impulse_scene);
-    StoppingSimulator impulse_simulator(make_impulse_simulator(impulse_scene));
-    Trajectory impulse = record(impulse_simulator, impulse_scene);
-    Trajectory box2d = record(*box2d_simulator, box2d_scene);
-    if (const std::optional<double> end = impulse_simulator.stopped_at()) {
-        truncate(impulse, *end);
-        truncate(box2d, *end);
-        c.stopped = "the impulse engine stopped in the step after t = " + short_number(*end) +
-                    " s (" + impulse_simulator.reason() +
-                    "); both runs are compared up to t = " + short_number(*end) + " s";
-    }
-
-    c.dt = box2d_scene.dt;
-    c.integrator = integrator_name(impulse_scene.solver.integrator);
-    c.box2d = settings;
-    c.impulse_engine = impulse.engine;
-    c.box2d_engine = box2d.engine;
-    c.warnings.insert(c.warnings.end(), warnings.begin(), warnings.end());
-    c.rows = compare_observables(box2d_scene, impulse, box2d);
-    c.impulse_run = std::move(impulse);
-    c.box2d_run = std::move(box2d);
-    return c;
-}
-
 std::optional<double> difference(std::optional<double> a, std::optional<double> b) {
     if (!a || !b) {
         return std::nullopt;
@@ -231,7 +96,7 @@ std::optional<double> difference(std::optional<double> a, std::optional<double> 
     return *a - *b;
 }
 
-void write_table(std::ostream& out, const Comparison& c) {
+void write_table(std::ostream& out, const ReferenceComparison& c) {
     const std::vector<std::string> header = {"observable",      "exact",       "impulse",
                                              "Box2D",           "impulse err", "Box2D err",
                                              "Box2D - impulse", "tolerance",   "within"};
@@ -293,8 +158,8 @@ constexpr const char* legend =
                rtol |impulse|, from the scene's box2d block.
 )";
 
-void write_text(std::ostream& out, const std::vector<Comparison>& comparisons,
-                const Options& options) {
+void write_text(std::ostream& out, const std::vector<ReferenceComparison>& comparisons,
+                const ReferenceOptions& options) {
     out << "box2d: " << comparisons.size() << " scene" << (comparisons.size() == 1 ? "" : "s")
         << "; "
         << (options.scene_integrator
@@ -303,7 +168,7 @@ void write_text(std::ostream& out, const std::vector<Comparison>& comparisons,
                 : "the impulse engine integrates with symplectic-euler, Box2D's own "
                   "integrator, so the difference that remains is the collision model's")
         << "\n";
-    for (const Comparison& c : comparisons) {
+    for (const ReferenceComparison& c : comparisons) {
         out << "\n" << c.name << " (" << c.file << ")";
         if (c.box2d.observables.empty()) {
             out << ": no observables declared\n";
@@ -322,11 +187,11 @@ void write_text(std::ostream& out, const std::vector<Comparison>& comparisons,
     }
     out << "\n";
     std::size_t width = 4;
-    for (const Comparison& c : comparisons) {
+    for (const ReferenceComparison& c : comparisons) {
         width = std::max(width, c.name.size());
     }
     int passed = 0;
-    for (const Comparison& c : comparisons) {
+    for (const ReferenceComparison& c : comparisons) {
         passed += c.passed() ? 1 : 0;
         const std::string pad(width - c.name.size(), ' ');
         out << "  " << (c.passed() ? "ok      " : "FAILED  ") << c.name << pad << "  ";
@@ -350,9 +215,10 @@ nlohmann::json optional_number(std::optional<double> value) {
     return value && std::isfinite(*value) ? nlohmann::json(*value) : nlohmann::json(nullptr);
 }
 
-std::string write_json(const std::vector<Comparison>& comparisons, const Options& options) {
+std::string write_json(const std::vector<ReferenceComparison>& comparisons,
+                       const ReferenceOptions& options) {
     nlohmann::ordered_json scenes = nlohmann::ordered_json::array();
-    for (const Comparison& c : comparisons) {
+    for (const ReferenceComparison& c : comparisons) {
         nlohmann::ordered_json scene;
         scene["name"] = c.name;
         scene["file"] = c.file;
@@ -398,11 +264,11 @@ std::string write_json(const std::vector<Comparison>& comparisons, const Options
 
 // Both runs of every scene into dir; nothing is written when one of the
 // paths is refused (a link, a FIFO), so the folder is never half new.
-void write_runs(const std::string& dir, const std::vector<Comparison>& comparisons) {
+void write_runs(const std::string& dir, const std::vector<ReferenceComparison>& comparisons) {
     std::error_code error;
     std::filesystem::create_directories(dir, error);
     std::vector<std::pair<std::string, std::string>> files;
-    for (const Comparison& c : comparisons) {
+    for (const ReferenceComparison& c : comparisons) {
         if (c.impulse_run && c.box2d_run) {
             const std::string base = (std::filesystem::path(dir) / c.name).string();
             files.emplace_back(base + ".impulse.json", write_trajectory(*c.impulse_run));
@@ -429,7 +295,7 @@ int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
         out << box2d_help;
         return exit_ok;
     }
-    Options options;
+    ReferenceOptions options;
     if (const auto dt = a.option("--dt")) {
         options.dt = positive_seconds("--dt", *dt);
     }
@@ -457,17 +323,17 @@ int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
     std::vector<std::string> paths = scenes_named(root, a.positional);
     // Everything is computed before anything is written: a bad scene or a
     // shape Box2D cannot take is one sentence on stderr, with no half output.
-    std::vector<Comparison> comparisons;
+    std::vector<ReferenceComparison> comparisons;
     {
         Progress progress("box2d", progress_wanted(a.has_flag("--quiet")));
         progress.set_total(paths.size(), "scenes");
         for (const std::string& path : paths) {
             progress.set_item(std::filesystem::path(path).stem().string());
-            comparisons.push_back(compare_scene(path, options));
+            comparisons.push_back(compare_with_box2d(path, options));
             progress.advance();
         }
     }
-    for (const Comparison& c : comparisons) {
+    for (const ReferenceComparison& c : comparisons) {
         for (const std::string& warning : c.warnings) {
             err << "warning: " << warning << "\n";
         }
@@ -481,7 +347,7 @@ int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
         write_text(out, comparisons, options);
     }
     const bool all_passed = std::all_of(comparisons.begin(), comparisons.end(),
-                                        [](const Comparison& c) { return c.passed(); });
+                                        [](const ReferenceComparison& c) { return c.passed(); });
     return all_passed ? exit_ok : exit_failed;
 #endif
 }

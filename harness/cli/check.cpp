@@ -5,6 +5,7 @@
 #include "number_format.h"
 #include "output_path.h"
 #include "progress.h"
+#include "report.h"
 #include "tolerance.h"
 
 #include <algorithm>

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <iostream>
+#include <sstream>
 
 namespace impulse::harness::cli {
 
@@ -148,6 +149,19 @@ int main(int argc, char** argv) {
         err << "impulse " << verb << ": internal error: " << e.what() << "\n";
         return exit_bad_input;
     }
+}
+
+std::vector<std::string> comma_list(const std::string& text) {
+    std::vector<std::string> parts;
+    std::string part;
+    std::istringstream in(text);
+    while (std::getline(in, part, ',')) {
+        parts.push_back(part);
+    }
+    if (parts.empty() || text.back() == ',') {
+        throw UsageError("empty item in list '" + text + "'");
+    }
+    return parts;
 }
 
 } // namespace impulse::harness::cli

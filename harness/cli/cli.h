@@ -9,10 +9,6 @@
 #include <string>
 #include <vector>
 
-namespace impulse::harness {
-struct SweepResult;
-}
-
 namespace impulse::harness::cli {
 
 // Exit codes for every verb (DESIGN.md).
@@ -43,6 +39,9 @@ Arguments parse_arguments(const std::vector<std::string>& args,
 
 // A strictly parsed positive finite number of seconds, or UsageError naming the option.
 double positive_seconds(const std::string& option, const std::string& text);
+// The items of a comma-separated LIST option (--dt 0.01,0.005), or UsageError
+// for an empty item.
+std::vector<std::string> comma_list(const std::string& text);
 
 int main(int argc, char** argv);
 // One function per verb; each returns the exit code and throws InputError or
@@ -55,9 +54,5 @@ int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
 int render_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int stress_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
-
-// The sweep's plot: log10 cost against log10 error, every point faint, each
-// family's Pareto front as a line (Box2D's thick and dashed), a legend.
-std::string sweep_svg(const SweepResult& result);
 
 } // namespace impulse::harness::cli

@@ -1,8 +1,9 @@
-// `impulse stress`: the extremes matrix (harness/stress.h) as a table or JSON.
+// `impulse stress`: the extremes matrix (harness/study/stress.h) as a table or JSON.
 #include "stress.h"
 
 #include "cli.h"
 #include "progress.h"
+#include "text.h"
 
 #include <algorithm>
 #include <chrono>
@@ -48,19 +49,6 @@ its row shows the refusal. Each case's wall time is shown, never judged.
 Exit: 0 every row within its bound (or refused as expected), 1 otherwise, 2 bad input.
 )";
 
-std::vector<std::string> split(const std::string& text) {
-    std::vector<std::string> parts;
-    std::string part;
-    std::istringstream in(text);
-    while (std::getline(in, part, ',')) {
-        parts.push_back(part);
-    }
-    if (parts.empty() || text.back() == ',') {
-        throw UsageError("empty item in list '" + text + "'");
-    }
-    return parts;
-}
-
 std::string sci(double value) {
     if (std::isnan(value)) {
         return "nan";
@@ -79,12 +67,9 @@ std::string seconds_text(double seconds) {
     return buffer;
 }
 
-std::string pad(std::string text, std::size_t width, bool right = false) {
-    if (text.size() < width) {
-        text = right ? std::string(width - text.size(), ' ') + text
-                     : text + std::string(width - text.size(), ' ');
-    }
-    return text + " ";
+// A table cell: the text padded to its column, then the gap before the next.
+std::string cell(const std::string& text, std::size_t width, bool right = false) {
+    return padded(text, width, right) + " ";
 }
 
 std::string bound_text(const StressRow& row) {
@@ -103,8 +88,8 @@ constexpr std::size_t case_width = 22;
 constexpr std::size_t invariant_width = 46;
 
 void write_header(std::ostream& out) {
-    out << pad("case", case_width) << pad("invariant", invariant_width) << pad("worst", 10, true)
-        << pad("bound", 10, true) << pad("result", 7) << "wall time (steps, collisions)\n";
+    out << cell("case", case_width) << cell("invariant", invariant_width) << cell("worst", 10, true)
+        << cell("bound", 10, true) << cell("result", 7) << "wall time (steps, collisions)\n";
 }
 
 // One case's rows, its wall time on the first; a refusal or a stop is a row
@@ -113,9 +98,9 @@ void write_case(const StressResult& r, std::ostream& out) {
     bool first = true;
     const auto row = [&](const std::string& invariant, const std::string& worst,
                          const std::string& bound, bool passed) {
-        std::string line = pad(first ? r.name : "", case_width) + pad(invariant, invariant_width) +
-                           pad(worst, 10, true) + pad(bound, 10, true) +
-                           pad(passed ? "pass" : "FAIL", 7);
+        std::string line = cell(first ? r.name : "", case_width) +
+                           cell(invariant, invariant_width) + cell(worst, 10, true) +
+                           cell(bound, 10, true) + cell(passed ? "pass" : "FAIL", 7);
         if (first) {
             line += seconds_text(r.seconds);
             if (r.refusal.empty()) {
@@ -126,7 +111,7 @@ void write_case(const StressResult& r, std::ostream& out) {
         first = false;
     };
     const auto below = [&](const std::string& text) {
-        out << pad("", case_width) << "  " << text << "\n";
+        out << cell("", case_width) << "  " << text << "\n";
     };
     if (!r.refusal.empty()) {
         row(r.expected_refusal ? "refused up front, as it must be" : "refused up front", "-", "-",
@@ -214,7 +199,7 @@ int stress_verb(const std::vector<std::string>& args, std::ostream& out, std::os
     std::vector<StressCase> cases = stress_cases();
     if (const auto list = a.option("--case")) {
         std::vector<StressCase> chosen;
-        for (const std::string& name : split(*list)) {
+        for (const std::string& name : comma_list(*list)) {
             const auto it = std::find_if(cases.begin(), cases.end(),
                                          [&](const StressCase& c) { return c.name == name; });
             if (it == cases.end()) {
@@ -227,7 +212,7 @@ int stress_verb(const std::vector<std::string>& args, std::ostream& out, std::os
     }
     if (a.has_flag("--list")) {
         for (const StressCase& c : cases) {
-            out << pad(c.name, case_width) << c.description << "\n";
+            out << cell(c.name, case_width) << c.description << "\n";
         }
         return exit_ok;
     }

@@ -1,14 +1,17 @@
-// `impulse sweep SCENE`: the speed/accuracy trade (harness/sweep.h) as a
+// `impulse sweep SCENE`: the speed/accuracy trade (harness/study/sweep.h) as a
 // table, JSON, CSV and an SVG plot of error against cost.
 #include "sweep.h"
 
 #include "cli.h"
 #include "gate.h"
 #include "input_error.h"
+#include "markup.h"
 #include "number_format.h"
 #include "output_path.h"
 #include "progress.h"
 #include "render.h"
+#include "sweep_plot.h"
+#include "text.h"
 
 #include <algorithm>
 #include <charconv>
@@ -79,19 +82,6 @@ together) dominating every point of Box2D's.
 A LIST is comma-separated, e.g. --dt 0.01,0.005. Exit 0, or 2 for bad input.
 )";
 
-std::vector<std::string> split(const std::string& text) {
-    std::vector<std::string> parts;
-    std::string part;
-    std::istringstream in(text);
-    while (std::getline(in, part, ',')) {
-        parts.push_back(part);
-    }
-    if (parts.empty() || (!text.empty() && text.back() == ',')) {
-        throw UsageError("empty item in list '" + text + "'");
-    }
-    return parts;
-}
-
 int whole_number(const std::string& option, const std::string& text) {
     int value = 0;
     const char* end = text.data() + text.size();
@@ -106,13 +96,13 @@ SweepConfig config_from(const Arguments& a, const Scene& scene) {
     SweepConfig config = default_sweep_config(scene);
     if (const auto list = a.option("--dt")) {
         config.dts.clear();
-        for (const std::string& item : split(*list)) {
+        for (const std::string& item : comma_list(*list)) {
             config.dts.push_back(positive_seconds("--dt", item));
         }
     }
     if (const auto list = a.option("--integrator")) {
         config.integrators.clear();
-        for (const std::string& item : split(*list)) {
+        for (const std::string& item : comma_list(*list)) {
             Integrator integrator{};
             if (!integrator_from_name(item, integrator)) {
                 throw UsageError(
@@ -124,7 +114,7 @@ SweepConfig config_from(const Arguments& a, const Scene& scene) {
     }
     if (const auto list = a.option("--toi")) {
         config.toi_methods.clear();
-        for (const std::string& item : split(*list)) {
+        for (const std::string& item : comma_list(*list)) {
             TimeOfImpactMethod method{};
             if (!toi_method_from_name(item, method)) {
                 throw UsageError("--toi takes bisection or secant, got '" + item + "'");
@@ -134,13 +124,13 @@ SweepConfig config_from(const Arguments& a, const Scene& scene) {
     }
     if (const auto list = a.option("--toi-tolerance")) {
         config.toi_tolerances.clear();
-        for (const std::string& item : split(*list)) {
+        for (const std::string& item : comma_list(*list)) {
             config.toi_tolerances.push_back(positive_seconds("--toi-tolerance", item));
         }
     }
     if (const auto list = a.option("--ccd")) {
         config.ccd.clear();
-        for (const std::string& item : split(*list)) {
+        for (const std::string& item : comma_list(*list)) {
             if (item != "off" && item != "on") {
                 throw UsageError("--ccd takes off or on, got '" + item + "'");
             }
@@ -149,13 +139,13 @@ SweepConfig config_from(const Arguments& a, const Scene& scene) {
     }
     if (const auto list = a.option("--box2d-substeps")) {
         config.box2d_substeps.clear();
-        for (const std::string& item : split(*list)) {
+        for (const std::string& item : comma_list(*list)) {
             config.box2d_substeps.push_back(whole_number("--box2d-substeps", item));
         }
     }
     if (const auto list = a.option("--box2d-iterations")) {
         config.box2d_iterations.clear();
-        for (const std::string& item : split(*list)) {
+        for (const std::string& item : comma_list(*list)) {
             const std::size_t slash = item.find('/');
             if (slash == std::string::npos) {
                 throw UsageError("--box2d-iterations takes VELOCITY/POSITION, e.g. 8/3, got '" +
@@ -175,13 +165,6 @@ SweepConfig config_from(const Arguments& a, const Scene& scene) {
     return config;
 }
 
-// Fixed, locale-free formatting for the table and the SVG.
-std::string fixed(double value, int digits) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.*f", digits, value);
-    return buffer;
-}
-
 std::string sci(double value, int digits = 2) {
     if (std::isinf(value)) {
         return "inf";
@@ -192,14 +175,6 @@ std::string sci(double value, int digits = 2) {
     char buffer[64];
     std::snprintf(buffer, sizeof buffer, "%.*e", digits, value);
     return buffer;
-}
-
-std::string pad(std::string text, std::size_t width, bool right = false) {
-    if (text.size() < width) {
-        text = right ? std::string(width - text.size(), ' ') + text
-                     : text + std::string(width - text.size(), ' ');
-    }
-    return text;
 }
 
 std::string settings_of(const SweepPoint& p) {
@@ -213,7 +188,7 @@ std::string settings_of(const SweepPoint& p) {
 std::string dt_text(double dt) {
     const double hz = 1.0 / dt;
     if (std::abs(hz - std::round(hz)) < 1e-9 * hz) {
-        return "1/" + fixed(std::round(hz), 0);
+        return "1/" + fixed_text(std::round(hz), 0);
     }
     return format_double(dt);
 }
@@ -236,7 +211,7 @@ std::string times(double ratio) {
     if (!std::isfinite(ratio) || ratio >= 1e4) {
         return sci(ratio, 1) + "x";
     }
-    return fixed(ratio, ratio < 10.0 ? 1 : 0) + "x";
+    return fixed_text(ratio, ratio < 10.0 ? 1 : 0) + "x";
 }
 
 // Why no target was measured, or empty when they were.
@@ -320,22 +295,25 @@ void write_table(const SweepResult& r, std::ostream& out) {
     for (const SweepPoint& p : r.points) {
         method_width = std::max(method_width, p.family.size() + 2);
     }
-    out << pad("method", method_width) << pad("dt", 7) << pad("settings", 17)
-        << pad("error", 10, true) << pad("cost", 11, true) << pad("+-", 10, true)
-        << pad("steps", 9, true) << pad("narrow", 10, true) << pad("toi_it", 9, true) << "\n";
+    out << padded("method", method_width) << padded("dt", 7) << padded("settings", 17)
+        << padded("error", 10, true) << padded("cost", 11, true) << padded("+-", 10, true)
+        << padded("steps", 9, true) << padded("narrow", 10, true) << padded("toi_it", 9, true)
+        << "\n";
     for (const SweepPoint& p : r.points) {
-        out << pad(p.family, method_width) << pad(dt_text(p.dt), 7) << pad(settings_of(p), 17);
+        out << padded(p.family, method_width) << padded(dt_text(p.dt), 7)
+            << padded(settings_of(p), 17);
         if (!p.ok) {
             out << "  FAILED: " << p.failure << "\n";
             continue;
         }
-        out << pad(sci(p.error), 10, true) << pad(sci(p.cost_median), 11, true)
-            << pad(sci(p.cost_spread, 1), 10, true) << pad(std::to_string(p.work.steps), 9, true);
+        out << padded(sci(p.error), 10, true) << padded(sci(p.cost_median), 11, true)
+            << padded(sci(p.cost_spread, 1), 10, true)
+            << padded(std::to_string(p.work.steps), 9, true);
         if (p.box2d) {
-            out << pad("-", 10, true) << pad("-", 9, true);
+            out << padded("-", 10, true) << padded("-", 9, true);
         } else {
-            out << pad(std::to_string(p.work.narrow_phase_queries), 10, true)
-                << pad(std::to_string(p.work.toi_iterations), 9, true);
+            out << padded(std::to_string(p.work.narrow_phase_queries), 10, true)
+                << padded(std::to_string(p.work.toi_iterations), 9, true);
         }
         out << (p.on_front ? " *" : "") << (p.work_identical ? "" : " (work varied!)") << "\n";
     }
@@ -464,173 +442,7 @@ void write_csv(const SweepResult& r, std::ostream& out) {
     }
 }
 
-// Errors of exactly 0 (and anything below) are drawn at this floor.
-constexpr double plot_error_floor = 1e-17;
-
 } // namespace
-
-std::string sweep_svg(const SweepResult& r) {
-    constexpr double height = 560, left = 80, top = 50, bottom = 60, plot_w = 550;
-    // The legend's column as wide as its longest label needs (about 7 px a
-    // character at 12 px): "impulse symplectic-euler/bisection+ccd" is long.
-    std::size_t longest = 0;
-    for (const SweepPoint& p : r.points) {
-        longest = std::max(longest, p.box2d ? std::string("Box2D 2.4.1").size() : p.family.size());
-    }
-    const double right = std::max(250.0, 50.0 + 7.0 * static_cast<double>(longest));
-    const double width = left + plot_w + right, plot_h = height - top - bottom;
-    std::vector<const SweepPoint*> drawn;
-    for (const SweepPoint& p : r.points) {
-        if (p.ok && std::isfinite(p.error) && p.cost_median > 0.0) {
-            drawn.push_back(&p);
-        }
-    }
-    auto lx = [](const SweepPoint& p) { return std::log10(p.cost_median); };
-    auto ly = [](const SweepPoint& p) { return std::log10(std::max(p.error, plot_error_floor)); };
-    double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
-    if (!drawn.empty()) {
-        x0 = y0 = 1e300;
-        x1 = y1 = -1e300;
-        for (const SweepPoint* p : drawn) {
-            x0 = std::min(x0, lx(*p));
-            x1 = std::max(x1, lx(*p));
-            y0 = std::min(y0, ly(*p));
-            y1 = std::max(y1, ly(*p));
-        }
-        x0 = std::floor(x0);
-        x1 = std::max(std::ceil(x1), x0 + 1);
-        y0 = std::floor(y0);
-        y1 = std::max(std::ceil(y1), y0 + 1);
-    }
-    auto px = [&](double v) { return left + (v - x0) / (x1 - x0) * plot_w; };
-    auto py = [&](double v) { return top + (y1 - v) / (y1 - y0) * plot_h; };
-
-    // Families in first-appearance order; Box2D drawn last and distinct; a
-    // "+ccd" family in its sibling's colour, dotted.
-    std::vector<std::string> families;
-    for (const SweepPoint& p : r.points) {
-        if (std::find(families.begin(), families.end(), p.family) == families.end()) {
-            families.push_back(p.family);
-        }
-    }
-    const char* palette[] = {"#1f77b4", "#aec7e8", "#ff7f0e", "#ffbb78", "#2ca02c",
-                             "#98df8a", "#9467bd", "#c5b0d5", "#8c564b", "#e377c2"};
-    const std::string ccd_suffix = "+ccd";
-    auto is_ccd = [&](const std::string& f) {
-        return f.size() > ccd_suffix.size() &&
-               f.compare(f.size() - ccd_suffix.size(), ccd_suffix.size(), ccd_suffix) == 0;
-    };
-    auto base_of = [&](const std::string& f) {
-        return is_ccd(f) ? f.substr(0, f.size() - ccd_suffix.size()) : f;
-    };
-    std::map<std::string, std::string> base_colour;
-    std::size_t next = 0;
-    for (const std::string& f : families) {
-        const std::string base = base_of(f);
-        if (base_colour.count(base) == 0) {
-            base_colour[base] = base == "box2d" ? "#d62728" : palette[next++ % 10];
-        }
-    }
-    std::map<std::string, std::string> colour;
-    for (const std::string& f : families) {
-        colour[f] = base_colour[base_of(f)];
-    }
-    auto dashes = [&](const std::string& f) -> std::string {
-        if (f == "box2d") {
-            return " stroke-dasharray=\"8 4\"";
-        }
-        return is_ccd(f) ? " stroke-dasharray=\"2 3\"" : "";
-    };
-
-    std::ostringstream s;
-    s << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-    s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << fixed(width, 0) << "\" height=\""
-      << fixed(height, 0) << "\" viewBox=\"0 0 " << fixed(width, 0) << " " << fixed(height, 0)
-      << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
-    s << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-    s << "<text x=\"" << fixed(left, 0) << "\" y=\"24\" font-size=\"15\">"
-      << xml_escape("impulse sweep: " + r.scene + ", error against cost") << "</text>\n";
-    s << "<text x=\"" << fixed(left, 0) << "\" y=\"40\" font-size=\"10\" fill=\"#555\">"
-      << xml_escape(r.against_exact ? "error against the scene's exact answers"
-                                    : "error against a reference run at the finest settings")
-      << "</text>\n";
-    // Axes and decade ticks.
-    s << "<rect x=\"" << fixed(left, 1) << "\" y=\"" << fixed(top, 1) << "\" width=\""
-      << fixed(plot_w, 1) << "\" height=\"" << fixed(plot_h, 1)
-      << "\" fill=\"none\" stroke=\"#333\"/>\n";
-    // Integer tick counts: the ends are whole decades, and a floating-point
-    // loop counter could gain or lose a tick to rounding.
-    const int x_ticks = static_cast<int>(std::lround(x1 - x0));
-    for (int k = 0; k <= x_ticks; ++k) {
-        const double d = x0 + k;
-        s << "<line x1=\"" << fixed(px(d), 1) << "\" y1=\"" << fixed(top, 1) << "\" x2=\""
-          << fixed(px(d), 1) << "\" y2=\"" << fixed(top + plot_h, 1) << "\" stroke=\"#ddd\"/>\n";
-        s << "<text x=\"" << fixed(px(d), 1) << "\" y=\"" << fixed(top + plot_h + 16, 1)
-          << "\" text-anchor=\"middle\">1e" << fixed(d, 0) << "</text>\n";
-    }
-    const double ystep = y1 - y0 > 12 ? 2.0 : 1.0;
-    const int y_ticks = static_cast<int>(std::lround(y1 - y0)) / static_cast<int>(ystep);
-    for (int k = 0; k <= y_ticks; ++k) {
-        const double d = y0 + k * ystep;
-        s << "<line x1=\"" << fixed(left, 1) << "\" y1=\"" << fixed(py(d), 1) << "\" x2=\""
-          << fixed(left + plot_w, 1) << "\" y2=\"" << fixed(py(d), 1) << "\" stroke=\"#ddd\"/>\n";
-        s << "<text x=\"" << fixed(left - 6, 1) << "\" y=\"" << fixed(py(d) + 4, 1)
-          << "\" text-anchor=\"end\">1e" << fixed(d, 0) << "</text>\n";
-    }
-    s << "<text x=\"" << fixed(left + plot_w / 2, 1) << "\" y=\"" << fixed(height - 16, 1)
-      << "\" text-anchor=\"middle\">cost: wall time per simulated second (s/s, log)</text>\n";
-    s << "<text transform=\"translate(20," << fixed(top + plot_h / 2, 1)
-      << ") rotate(-90)\" text-anchor=\"middle\">error (relative, log; 0 drawn at 1e-17)</text>\n";
-    // All points, faint.
-    for (const SweepPoint* p : drawn) {
-        s << "<circle cx=\"" << fixed(px(lx(*p)), 2) << "\" cy=\"" << fixed(py(ly(*p)), 2)
-          << "\" r=\"2.5\" fill=\"" << colour[p->family] << "\" fill-opacity=\"0.25\"/>\n";
-    }
-    // Each family's front, Box2D's thick and dashed.
-    for (const std::string& f : families) {
-        std::vector<const SweepPoint*> front;
-        for (const SweepPoint* p : drawn) {
-            if (p->family == f && p->on_front) {
-                front.push_back(p);
-            }
-        }
-        if (front.empty()) {
-            continue;
-        }
-        std::sort(front.begin(), front.end(),
-                  [&](const SweepPoint* a, const SweepPoint* b) { return lx(*a) < lx(*b); });
-        const bool box2d = f == "box2d";
-        s << "<polyline fill=\"none\" stroke=\"" << colour[f] << "\" stroke-width=\""
-          << (box2d ? "3" : "1.5") << "\"" << dashes(f) << " points=\"";
-        for (std::size_t i = 0; i < front.size(); ++i) {
-            s << (i ? " " : "") << fixed(px(lx(*front[i])), 2) << ","
-              << fixed(py(ly(*front[i])), 2);
-        }
-        s << "\"/>\n";
-        for (const SweepPoint* p : front) {
-            s << "<circle cx=\"" << fixed(px(lx(*p)), 2) << "\" cy=\"" << fixed(py(ly(*p)), 2)
-              << "\" r=\"" << (box2d ? "4" : "3") << "\" fill=\"" << colour[f] << "\"/>\n";
-        }
-    }
-    // Legend.
-    double ly0 = top + 10;
-    const double lx0 = left + plot_w + 20;
-    for (const std::string& f : families) {
-        const bool box2d = f == "box2d";
-        s << "<line x1=\"" << fixed(lx0, 1) << "\" y1=\"" << fixed(ly0, 1) << "\" x2=\""
-          << fixed(lx0 + 24, 1) << "\" y2=\"" << fixed(ly0, 1) << "\" stroke=\"" << colour[f]
-          << "\" stroke-width=\"" << (box2d ? "3" : "1.5") << "\"" << dashes(f) << "/>\n";
-        s << "<text x=\"" << fixed(lx0 + 30, 1) << "\" y=\"" << fixed(ly0 + 4, 1) << "\">"
-          << xml_escape(box2d ? "Box2D 2.4.1" : f) << "</text>\n";
-        ly0 += 18;
-    }
-    s << "<text x=\"" << fixed(lx0, 1) << "\" y=\"" << fixed(ly0 + 8, 1)
-      << "\" font-size=\"10\" fill=\"#555\">lines: Pareto fronts"
-      << (std::any_of(families.begin(), families.end(), is_ccd) ? " (dotted: +ccd)" : "")
-      << "; dots: all points</text>\n";
-    s << "</svg>\n";
-    return s.str();
-}
 
 int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
     const Arguments a =

@@ -3,6 +3,7 @@
 #include "expectations.h"
 #include "input_error.h"
 #include "number_format.h"
+#include "record.h"
 #include "run.h"
 #include "simulator.h"
 #include "single_precision.h"

@@ -2,7 +2,7 @@
 // scenes are simulated again and compared with the goldens blessed earlier.
 #pragma once
 
-#include "report.h"
+#include "scene_check.h"
 
 #include <functional>
 #include <optional>

@@ -7,8 +7,10 @@
 
 #include "atomic_file.h"
 #include "input_error.h"
+#include "markup.h"
 #include "number_format.h"
 #include "render.h"
+#include "text.h"
 
 #include <algorithm>
 #include <charconv>
@@ -64,30 +66,15 @@ std::string seconds_text(double s) {
     return std::string(buffer, r.ptr);
 }
 
-// A double exactly (shortest round trip), or its name when JSON cannot hold it.
-std::string exact(double value) {
-    if (std::isnan(value)) {
-        return "NaN";
-    }
-    if (std::isinf(value)) {
-        return value > 0 ? "inf" : "-inf";
-    }
-    return format_double(value);
-}
-
 // A number for people: three (or `digits`) significant digits.
 std::string approx(double value, int digits = 3) {
     if (!std::isfinite(value)) {
-        return exact(value);
+        return sentence_number(value);
     }
     char buffer[64];
     const auto r =
         std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, digits);
     return std::string(buffer, r.ptr);
-}
-
-std::string plural(std::size_t n, const char* one, const char* many) {
-    return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
 std::string verdict_counts(const Counts& c) {
@@ -139,7 +126,8 @@ std::string divergence_text(const Divergence& d) {
     if (!event) {
         text += " (frame " + std::to_string(d.frame) + ")";
     }
-    text += ": golden " + exact(d.gold) + ", new " + exact(d.value) + " (abs " + approx(d.abs_diff);
+    text += ": golden " + sentence_number(d.gold) + ", new " + sentence_number(d.value) + " (abs " +
+            approx(d.abs_diff);
     if (std::isfinite(d.rel_diff)) {
         text += ", rel " + approx(d.rel_diff);
     }
@@ -433,7 +421,8 @@ void html_section(std::string& out, const SceneCheck& check, const std::string& 
         for (const ExpectationResult& e : check.expectations) {
             out += std::string("<li class=\"") + (e.passed ? "pass" : "fail") + "\">" +
                    (e.passed ? "&#10003; " : "&#10007; ") + xml_escape(e.what) + ": expected " +
-                   xml_escape(exact(e.expected)) + ", got " + xml_escape(exact(e.actual));
+                   xml_escape(sentence_number(e.expected)) + ", got " +
+                   xml_escape(sentence_number(e.actual));
             if (!e.detail.empty()) {
                 out += " &#8212; " + xml_escape(e.detail);
             }

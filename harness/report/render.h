@@ -25,10 +25,4 @@ std::string render_comparison_svg(const Scene* scene, const Trajectory& gold,
 // before an event at the same time, then column order); nullptr when none.
 const Divergence* first_divergence(const Comparison& comparison);
 
-// Text made safe for XML 1.0 (SVG, HTML, JUnit): & < > " ' escaped; control
-// characters XML 1.0 forbids and invalid UTF-8 replaced by U+FFFD. In content
-// tabs and line feeds stay; as an attribute value (attribute = true) they and
-// carriage returns become character references, so parsers keep them.
-std::string xml_escape(const std::string& text, bool attribute = false);
-
 } // namespace impulse::harness

@@ -3,7 +3,7 @@
 // takes the others or the process down.
 #pragma once
 
-#include "report.h"
+#include "scene_check.h"
 
 #include <exception>
 #include <functional>

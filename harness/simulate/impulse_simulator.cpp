@@ -4,6 +4,7 @@
 #include "number_format.h"
 #include "progress.h"
 #include "simulator.h"
+#include "text.h"
 #include "world.h"
 
 #include <cmath>
@@ -12,10 +13,6 @@
 namespace impulse::harness {
 
 namespace {
-
-std::string quoted(const std::string& s) {
-    return "\"" + s + "\"";
-}
 
 Body body_from(const SceneBody& spec) {
     Body body;
@@ -51,12 +48,12 @@ class ImpulseSimulator final : public Simulator {
     std::vector<std::pair<std::string, std::string>> settings() const override {
         const SolverSettings& s = scene_.solver;
         std::vector<std::pair<std::string, std::string>> settings = {
-            {"integrator", quoted(integrator_name(s.integrator))},
-            {"toi", quoted(toi_method_name(s.toi))},
+            {"integrator", double_quoted(integrator_name(s.integrator))},
+            {"toi", double_quoted(toi_method_name(s.toi))},
             {"dt", format_double(scene_.dt)},
             {"toi_tolerance", format_double(s.toi_tolerance)},
             {"contact_tolerance", format_double(s.contact_tolerance)},
-            {"contacts", quoted(contact_mode_name(s.contacts))},
+            {"contacts", double_quoted(contact_mode_name(s.contacts))},
             {"ccd", s.ccd ? "true" : "false"},
             {"resting", s.resting ? "true" : "false"},
         };
@@ -65,10 +62,11 @@ class ImpulseSimulator final : public Simulator {
         // writes the same bytes as before the key existed, so every golden
         // blessed earlier stays byte-identical (docs/formats.md).
         if (s.stepping != Stepping::world) {
-            settings.emplace_back("stepping", quoted(stepping_name(s.stepping)));
+            settings.emplace_back("stepping", double_quoted(stepping_name(s.stepping)));
         }
         if (s.vertex_normal != VertexNormal::reference_face) {
-            settings.emplace_back("vertex_normal", quoted(vertex_normal_name(s.vertex_normal)));
+            settings.emplace_back("vertex_normal",
+                                  double_quoted(vertex_normal_name(s.vertex_normal)));
         }
         return settings;
     }
@@ -176,70 +174,6 @@ class ImpulseSimulator final : public Simulator {
 
 std::unique_ptr<Simulator> make_impulse_simulator(const Scene& scene) {
     return std::make_unique<ImpulseSimulator>(scene);
-}
-
-Trajectory record(Simulator& simulator, const Scene& scene) {
-    Trajectory trajectory;
-    trajectory.scene = scene.name;
-    trajectory.scene_sha256 = scene.sha256;
-    trajectory.engine = simulator.engine();
-    trajectory.solver = simulator.settings();
-
-    std::vector<int> dynamic;
-    trajectory.columns.push_back("t");
-    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-        if (scene.bodies[i].is_static) {
-            continue;
-        }
-        dynamic.push_back(static_cast<int>(i));
-        for (const char* channel : {".x", ".y", ".angle", ".vx", ".vy", ".omega"}) {
-            trajectory.columns.push_back(scene.bodies[i].name + channel);
-        }
-    }
-
-    auto frame_at = [&](double t) {
-        std::vector<double> frame;
-        frame.reserve(trajectory.columns.size());
-        frame.push_back(t);
-        for (int index : dynamic) {
-            const BodyState s = simulator.state(index);
-            frame.insert(frame.end(), {s.position.x, s.position.y, s.angle, s.velocity.x,
-                                       s.velocity.y, s.angular_velocity});
-        }
-        return frame;
-    };
-
-    const long long steps = step_count(scene);
-    // The frames are known before the run: a trajectory that could exceed
-    // the limit is refused before anything is simulated (docs/memory.md).
-    TrajectorySize size =
-        header_size_bound(trajectory.columns) +
-        frames_size_bound(static_cast<std::uint64_t>(steps) + 1, trajectory.columns.size());
-    require_within_trajectory_limit(size, scene.file, "duration",
-                                    "the run would record " + std::to_string(steps + 1) +
-                                        " frames of " + std::to_string(trajectory.columns.size()) +
-                                        " numbers (" + std::to_string(steps) + " steps)",
-                                    true);
-    trajectory.frames.reserve(static_cast<std::size_t>(steps) + 1);
-    trajectory.frames.push_back(frame_at(0.0));
-    for (long long k = 0; k < steps; ++k) {
-        // Time as k dt, never accumulated, so it does not drift.
-        simulator.step(static_cast<double>(k) * scene.dt, scene.dt);
-        for (TrajectoryEvent& e : simulator.take_events()) {
-            // Events are not known up front: the run stops, with a sentence,
-            // at the first that could take the trajectory past the limit.
-            size = size + event_size_bound(e.a.size() + e.b.size());
-            require_within_trajectory_limit(
-                size, scene.file, "",
-                "the run stopped at t = " + format_double(e.t) + " s: its frames and " +
-                    std::to_string(trajectory.events.size() + 1) + " collision events so far",
-                true);
-            trajectory.events.push_back(std::move(e));
-        }
-        trajectory.frames.push_back(frame_at(static_cast<double>(k + 1) * scene.dt));
-        note_simulated_time(static_cast<double>(k + 1) * scene.dt, scene.duration);
-    }
-    return trajectory;
 }
 
 } // namespace impulse::harness

@@ -10,6 +10,7 @@
 
 #include "exact_answers.h"
 #include "number_format.h"
+#include "text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -29,22 +30,6 @@ constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
 
 // ---------------------------------------------------------------- text
 
-// Reports print expected and actual with format_double, which refuses
-// non-finite values; this one is for sentences and takes anything.
-std::string number(double value) {
-    if (std::isnan(value)) {
-        return "NaN";
-    }
-    if (std::isinf(value)) {
-        return value > 0.0 ? "inf" : "-inf";
-    }
-    return format_double(value);
-}
-
-std::string quoted(const std::string& name) {
-    return "'" + name + "'";
-}
-
 // ---------------------------------------------------------------- judging one value
 
 // The checks of one expectation, with the prefix every line of it shares.
@@ -63,22 +48,24 @@ class Checks {
         r.actual = finite_or_zero(actual);
         if (!std::isfinite(expected.value)) {
             r.passed = false;
-            r.detail = "the exact formula gives " + number(expected.value) +
+            r.detail = "the exact formula gives " + sentence_number(expected.value) +
                        " for this scene, so it cannot be checked";
         } else if (!std::isfinite(actual)) {
             r.passed = false;
-            r.detail = "the run gave " + number(actual) + ", which is not finite";
+            r.detail = "the run gave " + sentence_number(actual) + ", which is not finite";
         } else if (!std::isfinite(off) || !std::isfinite(allowed)) {
             // An overflowed difference or tolerance (a scale of inf) would let
             // anything pass: what cannot be computed fails.
             r.passed = false;
-            r.detail = "not finite: off by " + number(off) + ", allowed " + number(allowed) +
-                       " (atol " + number(expectation_.atol) + " + rtol " +
-                       number(expectation_.rtol) + " x " + number(expected.scale) + ")";
+            r.detail = "not finite: off by " + sentence_number(off) + ", allowed " +
+                       sentence_number(allowed) + " (atol " + sentence_number(expectation_.atol) +
+                       " + rtol " + sentence_number(expectation_.rtol) + " x " +
+                       sentence_number(expected.scale) + ")";
         } else if (!r.passed) {
-            r.detail = "off by " + number(off) + ", more than the " + number(allowed) +
-                       " allowed (atol " + number(expectation_.atol) + " + rtol " +
-                       number(expectation_.rtol) + " x " + number(expected.scale) + ")";
+            r.detail =
+                "off by " + sentence_number(off) + ", more than the " + sentence_number(allowed) +
+                " allowed (atol " + sentence_number(expectation_.atol) + " + rtol " +
+                sentence_number(expectation_.rtol) + " x " + sentence_number(expected.scale) + ")";
         }
         out_.push_back(std::move(r));
     }
@@ -96,8 +83,9 @@ class Checks {
         r.expected = finite_or_zero(expected);
         r.actual = finite_or_zero(actual);
         if (!finite) {
-            r.detail = "not finite: expected " + number(expected) + ", got " + number(actual) +
-                       ", allowed " + number(allowed) + "; " + detail;
+            r.detail = "not finite: expected " + sentence_number(expected) + ", got " +
+                       sentence_number(actual) + ", allowed " + sentence_number(allowed) + "; " +
+                       detail;
         } else if (!passed) {
             r.detail = detail;
         }
@@ -116,7 +104,7 @@ class Checks {
         ExpectationResult r = start(what);
         r.passed = expected == actual;
         if (!r.passed) {
-            r.detail = "expected " + quoted(expected) + ", got " + quoted(actual);
+            r.detail = "expected " + single_quoted(expected) + ", got " + single_quoted(actual);
         }
         out_.push_back(std::move(r));
     }
@@ -223,7 +211,7 @@ void check_drop(const Scene& scene, const Trajectory& trajectory, Checks& checks
     const SceneBody* body = scene_body(scene, x.body);
     const std::optional<double> h0 = body ? gap_to_static_ground(scene, *body) : std::nullopt;
     if (!h0) {
-        checks.failure("", "the scene has no body " + quoted(x.body) +
+        checks.failure("", "the scene has no body " + single_quoted(x.body) +
                                " above static ground, so the drop formula has no gap h0");
         return;
     }
@@ -249,8 +237,8 @@ void check_drop(const Scene& scene, const Trajectory& trajectory, Checks& checks
     if (seen < x.impacts) {
         checks.failure("impacts",
                        "the run has " + std::to_string(seen) + " collision" +
-                           (seen == 1 ? "" : "s") + " of " + quoted(x.body) + ", fewer than the " +
-                           std::to_string(x.impacts) + " impacts expected",
+                           (seen == 1 ? "" : "s") + " of " + single_quoted(x.body) +
+                           ", fewer than the " + std::to_string(x.impacts) + " impacts expected",
                        x.impacts, seen);
     }
 }
@@ -262,16 +250,16 @@ void check_corner_impact(const Scene& scene, const Trajectory& trajectory, Check
     const SceneBody* body = scene_body(scene, x.body);
     const std::optional<double> h = body ? gap_to_static_ground(scene, *body) : std::nullopt;
     if (!h || body->shape.type != ShapeType::polygon || !(body->inertia > 0.0)) {
-        checks.failure("", "the scene has no rotating polygon " + quoted(x.body) +
+        checks.failure("", "the scene has no rotating polygon " + single_quoted(x.body) +
                                " above static ground, so the corner-impact formula does not apply");
         return;
     }
     const CornerImpact c = corner_impact(scene, *body, *h);
     const std::vector<std::size_t> hits = events_of(trajectory, x.body);
     if (hits.empty()) {
-        checks.failure(
-            "", "the run has no collision of " + quoted(x.body) +
-                    "; the exact answer has it hit the ground at t = " + number(c.t_hit) + " s");
+        checks.failure("", "the run has no collision of " + single_quoted(x.body) +
+                               "; the exact answer has it hit the ground at t = " +
+                               sentence_number(c.t_hit) + " s");
         return;
     }
     const TrajectoryEvent& hit = trajectory.events[hits.front()];
@@ -305,8 +293,9 @@ void check_head_on(const Scene& scene, const Trajectory& trajectory, Checks& che
     const SceneBody* a = scene_body(scene, x.body);
     const SceneBody* b = scene_body(scene, x.other);
     if (!a || !b || a == b || !(a->mass > 0.0) || !(b->mass > 0.0)) {
-        checks.failure("", "the scene has no two dynamic bodies " + quoted(x.body) + " and " +
-                               quoted(x.other) + ", so the head-on formula does not apply");
+        checks.failure("", "the scene has no two dynamic bodies " + single_quoted(x.body) +
+                               " and " + single_quoted(x.other) +
+                               ", so the head-on formula does not apply");
         return;
     }
     const HeadOn h = head_on(scene, *a, *b);
@@ -318,8 +307,8 @@ void check_head_on(const Scene& scene, const Trajectory& trajectory, Checks& che
         }
     }
     if (!first) {
-        checks.failure("", "the run has no collision between " + quoted(a->name) + " and " +
-                               quoted(b->name));
+        checks.failure("", "the run has no collision between " + single_quoted(a->name) + " and " +
+                               single_quoted(b->name));
         return;
     }
     checks.value("impulse", h.j, trajectory.events[*first].impulse);
@@ -336,13 +325,13 @@ void check_head_on(const Scene& scene, const Trajectory& trajectory, Checks& che
     // A velocity read along u carries the rounding of its component across u,
     // and the other way round; the impulse's j / M is what rounding of the
     // normal leaks across.
-    checks.value(quoted(a->name) + " velocity along the line of centres",
+    checks.value(single_quoted(a->name) + " velocity along the line of centres",
                  {h.va_after.value, h.va_after.scale + std::abs(h.pa)}, dot(va, h.u));
-    checks.value(quoted(b->name) + " velocity along the line of centres",
+    checks.value(single_quoted(b->name) + " velocity along the line of centres",
                  {h.vb_after.value, h.vb_after.scale + std::abs(h.pb)}, dot(vb, h.u));
-    checks.value(quoted(a->name) + " velocity across the line of centres",
+    checks.value(single_quoted(a->name) + " velocity across the line of centres",
                  {h.pa, std::abs(h.pa) + h.va_after.scale + h.j.value / a->mass}, dot(va, across));
-    checks.value(quoted(b->name) + " velocity across the line of centres",
+    checks.value(single_quoted(b->name) + " velocity across the line of centres",
                  {h.pb, std::abs(h.pb) + h.vb_after.scale + h.j.value / b->mass}, dot(vb, across));
 }
 
@@ -368,7 +357,7 @@ std::optional<std::vector<Mass>> masses_of(const Scene& scene, const Trajectory&
         for (std::size_t i = 0; i < 6; ++i) {
             const auto it = index.find(body.name + suffixes[i]);
             if (it == index.end()) {
-                checks.failure("", "the trajectory has no columns for " + quoted(body.name));
+                checks.failure("", "the trajectory has no columns for " + single_quoted(body.name));
                 return std::nullopt;
             }
             found[i] = it->second;
@@ -434,7 +423,8 @@ void check_conserved(const Scene& scene, const Trajectory& trajectory, Checks& c
             name += worst_component == 0 ? " (x)" : " (y)";
         }
         const double t = frame_time(trajectory.frames[worst_frame]);
-        checks.value("conserved " + name + ", furthest from t = 0 at t = " + number(t) + " s",
+        checks.value("conserved " + name + ", furthest from t = 0 at t = " + sentence_number(t) +
+                         " s",
                      {initial[worst_component], scale_of(totals.front(), quantity)},
                      components_of(totals[worst_frame], quantity)[worst_component]);
     }
@@ -465,7 +455,7 @@ kicks_from_static_bodies(const Scene& scene, const Trajectory& trajectory, Check
         const auto b = is_static.find(e.b);
         if (a == is_static.end() || b == is_static.end()) {
             checks.failure("", "event " + std::to_string(k) + " names " +
-                                   quoted(a == is_static.end() ? e.a : e.b) +
+                                   single_quoted(a == is_static.end() ? e.a : e.b) +
                                    ", which is not a body of the scene");
             return std::nullopt;
         }
@@ -545,7 +535,7 @@ void check_momentum_balance(const Scene& scene, const Trajectory& trajectory, Ch
     }
     const double t = frame_time(trajectory.frames[worst.frame]);
     checks.value(std::string("momentum balance") + (worst.component == 0 ? " (x)" : " (y)") +
-                     ", nearest to its tolerance at t = " + number(t) + " s",
+                     ", nearest to its tolerance at t = " + sentence_number(t) + " s",
                  {worst.expected, worst.scale}, worst.actual);
 }
 
@@ -577,12 +567,13 @@ void check_energy_non_increasing(const Scene& scene, const Trajectory& trajector
     // E(k) <= E(k-1) + atol + rtol * scale: one-sided, a fall is always fine.
     const Expectation& x = checks.expectation();
     const double allowed = x.atol + x.rtol * initial.energy_scale;
-    checks.judged("energy non-increasing, largest rise at t = " + number(t) + " s",
+    checks.judged("energy non-increasing, largest rise at t = " + sentence_number(t) + " s",
                   after <= before + allowed, before, after,
-                  "the energy rose by " + number(after - before) +
-                      " J in the step to t = " + number(t) + " s, more than the " +
-                      number(allowed) + " allowed (atol " + number(x.atol) + " + rtol " +
-                      number(x.rtol) + " x " + number(initial.energy_scale) + ")",
+                  "the energy rose by " + sentence_number(after - before) +
+                      " J in the step to t = " + sentence_number(t) + " s, more than the " +
+                      sentence_number(allowed) + " allowed (atol " + sentence_number(x.atol) +
+                      " + rtol " + sentence_number(x.rtol) + " x " +
+                      sentence_number(initial.energy_scale) + ")",
                   allowed);
 }
 
@@ -628,13 +619,14 @@ void check_state(const Scene& scene, const Trajectory& trajectory, Checks& check
         [&](const std::vector<double>& f) { return std::abs(frame_time(f) - x.t) <= 1e-9 * dt; });
     const std::optional<BodyColumns> columns = body_columns(trajectory, x.body);
     if (!columns) {
-        checks.failure("", "the trajectory has no columns for " + quoted(x.body));
+        checks.failure("", "the trajectory has no columns for " + single_quoted(x.body));
         return;
     }
     if (frame == trajectory.frames.end()) {
         const double end = trajectory.frames.empty() ? 0.0 : frame_time(trajectory.frames.back());
-        checks.failure("", "the run has no frame at t = " + number(x.t) + " s (its frames are " +
-                               number(dt) + " s apart and end at " + number(end) + " s)");
+        checks.failure("", "the run has no frame at t = " + sentence_number(x.t) +
+                               " s (its frames are " + sentence_number(dt) +
+                               " s apart and end at " + sentence_number(end) + " s)");
         return;
     }
     const Motion m = motion_in(*frame, *columns);
@@ -649,11 +641,11 @@ void check_state(const Scene& scene, const Trajectory& trajectory, Checks& check
 std::string subject_of(const Expectation& x) {
     switch (x.kind) {
     case Expectation::Kind::drop:
-        return "drop of " + quoted(x.body);
+        return "drop of " + single_quoted(x.body);
     case Expectation::Kind::corner_impact:
-        return "corner impact of " + quoted(x.body);
+        return "corner impact of " + single_quoted(x.body);
     case Expectation::Kind::head_on:
-        return "head-on of " + quoted(x.body) + " and " + quoted(x.other);
+        return "head-on of " + single_quoted(x.body) + " and " + single_quoted(x.other);
     case Expectation::Kind::conserved:
     case Expectation::Kind::energy_non_increasing:
     case Expectation::Kind::momentum_balance:
@@ -661,7 +653,7 @@ std::string subject_of(const Expectation& x) {
     case Expectation::Kind::event:
         return "event " + std::to_string(x.index);
     case Expectation::Kind::state:
-        return "state of " + quoted(x.body) + " at t = " + number(x.t) + " s";
+        return "state of " + single_quoted(x.body) + " at t = " + sentence_number(x.t) + " s";
     }
     return "";
 }

@@ -3,6 +3,7 @@
 
 #include "manifold.h"
 #include "rotation.h"
+#include "text.h"
 
 #include <algorithm>
 #include <charconv>
@@ -23,10 +24,6 @@ std::string number_text(double value) {
 
 std::string vec2_text(Vec2 v) {
     return "(" + number_text(v.x) + ", " + number_text(v.y) + ")";
-}
-
-std::string quoted(const std::string& name) {
-    return "'" + name + "'";
 }
 
 Transform initial_transform(const SceneBody& body) {
@@ -55,23 +52,16 @@ std::optional<Refusal> gap_refusal(const Scene& scene, const SceneBody& body,
     const std::optional<double> gap = gap_to_static_ground(scene, body);
     if (!gap) {
         return refuse(Refusal::Where::body, formula + " needs static ground for " +
-                                                quoted(body.name) +
+                                                single_quoted(body.name) +
                                                 " to fall on, but every body is dynamic");
     }
     if (!(*gap > 0.0)) {
-        return refuse(Refusal::Where::body, formula + " needs a gap between " + quoted(body.name) +
+        return refuse(Refusal::Where::body, formula + " needs a gap between " +
+                                                single_quoted(body.name) +
                                                 " and the static ground at t = 0, but it "
                                                 "touches it");
     }
     return std::nullopt;
-}
-
-std::optional<std::size_t> column_index(const Trajectory& trajectory, const std::string& name) {
-    const auto it = std::find(trajectory.columns.begin(), trajectory.columns.end(), name);
-    if (it == trajectory.columns.end()) {
-        return std::nullopt;
-    }
-    return static_cast<std::size_t>(it - trajectory.columns.begin());
 }
 
 } // namespace
@@ -156,7 +146,7 @@ std::optional<Refusal> drop_refusal(const Scene& scene, const SceneBody& body,
     if (std::optional<Refusal> gravity = gravity_refusal(scene, formula, false)) {
         return gravity;
     }
-    const std::string name = quoted(body.name);
+    const std::string name = single_quoted(body.name);
     if (body.velocity != Vec2{}) {
         return refuse(Refusal::Where::body, formula + " needs the body at rest at t = 0, but " +
                                                 name + " has velocity " + vec2_text(body.velocity));
@@ -184,7 +174,7 @@ std::optional<Refusal> drop_refusal(const Scene& scene, const SceneBody& body,
 
 std::optional<Refusal> corner_impact_refusal(const Scene& scene, const SceneBody& body,
                                              const std::string& formula) {
-    const std::string name = quoted(body.name);
+    const std::string name = single_quoted(body.name);
     if (body.shape.type != ShapeType::polygon) {
         return refuse(Refusal::Where::body,
                       formula + " needs a polygon, but " + name + " is a circle");
@@ -252,7 +242,7 @@ std::optional<Refusal> head_on_refusal(const Scene& scene, const SceneBody& a, c
     const Vec2 u = (1.0 / length(line)) * line;
     const Vec2 relative = a.velocity - b.velocity;
     const double closing = dot(relative, u);
-    const std::string pair = quoted(a.name) + " and " + quoted(b.name);
+    const std::string pair = single_quoted(a.name) + " and " + single_quoted(b.name);
     if (!(closing > 0.0)) {
         return refuse(Refusal::Where::entry,
                       formula + " needs " + pair +
@@ -402,46 +392,11 @@ HeadOn head_on(const Scene& scene, const SceneBody& a, const SceneBody& b) {
 
 // ---------------------------------------------------------------- reading a trajectory
 
-std::optional<BodyColumns> body_columns(const Trajectory& trajectory, const std::string& body) {
-    std::size_t found[6] = {};
-    const char* suffixes[6] = {".x", ".y", ".angle", ".vx", ".vy", ".omega"};
-    for (std::size_t i = 0; i < 6; ++i) {
-        const std::optional<std::size_t> index = column_index(trajectory, body + suffixes[i]);
-        if (!index) {
-            return std::nullopt;
-        }
-        found[i] = *index;
-    }
-    return BodyColumns{found[0], found[1], found[2], found[3], found[4], found[5]};
-}
-
-double value_at(const std::vector<double>& frame, std::size_t column) {
-    return column < frame.size() ? frame[column] : std::numeric_limits<double>::quiet_NaN();
-}
-
-double frame_time(const std::vector<double>& frame) {
-    return value_at(frame, 0);
-}
-
 Motion motion_in(const std::vector<double>& frame, const BodyColumns& c) {
     return {{value_at(frame, c.x), value_at(frame, c.y)},
             value_at(frame, c.angle),
             {value_at(frame, c.vx), value_at(frame, c.vy)},
             value_at(frame, c.omega)};
-}
-
-bool involves(const TrajectoryEvent& event, const std::string& body) {
-    return event.a == body || event.b == body;
-}
-
-std::vector<std::size_t> events_of(const Trajectory& trajectory, const std::string& body) {
-    std::vector<std::size_t> out;
-    for (std::size_t i = 0; i < trajectory.events.size(); ++i) {
-        if (involves(trajectory.events[i], body)) {
-            out.push_back(i);
-        }
-    }
-    return out;
 }
 
 std::optional<std::vector<Mass>> masses_of(const Scene& scene, const Trajectory& trajectory,

@@ -1,5 +1,7 @@
 #include "golden_settings.h"
 
+#include "text.h"
+
 #include <algorithm>
 
 namespace impulse::harness {
@@ -13,10 +15,6 @@ std::string engine_name(const std::string& engine) {
     return engine.substr(0, engine.find(' '));
 }
 
-std::string quoted(const std::string& text) {
-    return "\"" + text + "\"";
-}
-
 const std::string* find_key(const SolverBlock& block, const std::string& key) {
     const auto it = std::find_if(block.begin(), block.end(),
                                  [&](const auto& entry) { return entry.first == key; });
@@ -28,12 +26,12 @@ const std::string* find_key(const SolverBlock& block, const std::string& key) {
 SettingsComparison compare_settings(const Trajectory& gold, const Trajectory& value) {
     SettingsComparison result;
     if (engine_name(gold.engine) != engine_name(value.engine)) {
-        result.differences.push_back("engine: golden " + quoted(gold.engine) + ", new " +
-                                     quoted(value.engine) +
+        result.differences.push_back("engine: golden " + double_quoted(gold.engine) + ", new " +
+                                     double_quoted(value.engine) +
                                      ": the golden was recorded by another engine");
     } else if (gold.engine != value.engine) {
-        result.notes.push_back("engine: the golden was blessed with " + quoted(gold.engine) +
-                               ", this run is " + quoted(value.engine) +
+        result.notes.push_back("engine: the golden was blessed with " + double_quoted(gold.engine) +
+                               ", this run is " + double_quoted(value.engine) +
                                "; its numbers and solver settings are compared as always, so "
                                "the version alone does not fail the gate");
     }

@@ -1,5 +1,5 @@
-// The gate's reports: a summary fit for a pull-request comment and an HTML
-// page per run, written to `check --report DIR`; and JUnit XML for CI.
+// The gate's result for one scene: what check_scene found, kept apart from
+// its presentation (report/) so the gate never includes the code that prints it.
 #pragma once
 
 #include "compare.h"
@@ -31,11 +31,5 @@ struct SceneCheck {
     std::optional<Trajectory> value;
     double seconds = 0.0; // wall time of this scene's check
 };
-
-std::string junit_xml(const std::vector<SceneCheck>& checks);
-std::string summary_markdown(const std::vector<SceneCheck>& checks);
-// Writes summary.md, index.html and one SVG per failed scene into dir
-// (created if missing); throws InputError when it cannot.
-void write_report(const std::string& dir, const std::vector<SceneCheck>& checks);
 
 } // namespace impulse::harness

@@ -10,6 +10,7 @@
 
 #include "exact_answers.h"
 #include "number_format.h"
+#include "text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -24,25 +25,6 @@ namespace impulse::harness {
 namespace {
 
 using Kind = Box2dObservable::Kind;
-
-std::string quoted(const std::string& name) {
-    return "'" + name + "'";
-}
-
-// For sentences: takes what format_double refuses.
-std::string number(double value) {
-    if (std::isnan(value)) {
-        return "NaN";
-    }
-    if (std::isinf(value)) {
-        return value > 0.0 ? "inf" : "-inf";
-    }
-    return format_double(value);
-}
-
-std::string plural(std::size_t n, const std::string& word) {
-    return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
-}
 
 // ---------------------------------------------------------------- the two runs
 
@@ -134,13 +116,13 @@ ObservableRow row(const Box2dObservable& observable, std::string name, std::opti
 
 // "The Box2D run has 2 impacts of 'box', fewer than 3."
 std::string too_few_impacts(const Run& run, std::size_t seen, int wanted, const std::string& body) {
-    return std::string("The ") + run.name + " run has " + plural(seen, "impact") + " of " +
-           quoted(body) + ", fewer than " + std::to_string(wanted) + ".";
+    return std::string("The ") + run.name + " run has " + plural(seen, "impact", "impacts") +
+           " of " + single_quoted(body) + ", fewer than " + std::to_string(wanted) + ".";
 }
 
 std::string no_frame_between(const Run& run, std::size_t n, const std::string& body) {
     return std::string("The ") + run.name + " run has no frame between impact " +
-           std::to_string(n) + " of " + quoted(body) + " and the next.";
+           std::to_string(n) + " of " + single_quoted(body) + " and the next.";
 }
 
 const SceneBody& body_named(const Scene& scene, const std::string& name) {
@@ -190,8 +172,9 @@ void impact_times(const Scene& scene, const Box2dObservable& o, const Run (&runs
         } else if (corner_time && n == 1) {
             exact = corner_time;
         }
-        out.push_back(row(o, "impact " + std::to_string(n) + " time of " + quoted(o.body) + " (s)",
-                          exact, readings[0], readings[1]));
+        out.push_back(
+            row(o, "impact " + std::to_string(n) + " time of " + single_quoted(o.body) + " (s)",
+                exact, readings[0], readings[1]));
     }
 }
 
@@ -212,7 +195,7 @@ std::vector<Reading> apexes(const Scene& scene, const Box2dObservable& o, const 
         const auto k = static_cast<std::size_t>(n - 1);
         if (!columns) {
             out.push_back(none(std::string("The ") + run.name + " run has no columns for " +
-                               quoted(o.body) + "."));
+                               single_quoted(o.body) + "."));
             continue;
         }
         if (k >= impacts.size()) {
@@ -242,7 +225,7 @@ void apex_observable(const Scene& scene, const Box2dObservable& o, const Run (&r
         const auto k = static_cast<std::size_t>(n);
         const std::string number_n = std::to_string(n);
         if (o.kind == Kind::apex_heights) {
-            out.push_back(row(o, "apex " + number_n + " of " + quoted(o.body) + " (m)",
+            out.push_back(row(o, "apex " + number_n + " of " + single_quoted(o.body) + " (m)",
                               drop.apex_gap(n), apex[0][k], apex[1][k]));
             continue;
         }
@@ -256,9 +239,10 @@ void apex_observable(const Scene& scene, const Box2dObservable& o, const Run (&r
                 ratio[r] = none(before.value ? now.missing : before.missing);
             }
         }
-        out.push_back(row(
-            o, "apex " + number_n + " / apex " + std::to_string(n - 1) + " of " + quoted(o.body),
-            drop.e * drop.e, ratio[0], ratio[1]));
+        out.push_back(row(o,
+                          "apex " + number_n + " / apex " + std::to_string(n - 1) + " of " +
+                              single_quoted(o.body),
+                          drop.e * drop.e, ratio[0], ratio[1]));
     }
 }
 
@@ -321,7 +305,7 @@ void post_impact_velocity(const Scene& scene, const Box2dObservable& o, const Ru
         columns[r] = body_columns(runs[r].trajectory, o.body);
         if (!columns[r]) {
             missing[r] = std::string("The ") + runs[r].name + " run has no columns for " +
-                         quoted(o.body) + ".";
+                         single_quoted(o.body) + ".";
         } else if (k >= impacts[r].size()) {
             missing[r] = too_few_impacts(runs[r], impacts[r].size(), o.impact, o.body);
         } else if (!(frames[r] = frame_after(runs[r].trajectory, impacts[r], k))) {
@@ -341,7 +325,8 @@ void post_impact_velocity(const Scene& scene, const Box2dObservable& o, const Ru
             frames[1] = common[1];
         } else {
             shared = "Read at each run's own first frame after the impact (t = " +
-                     number(frame_time(*frames[0])) + " s and " + number(frame_time(*frames[1])) +
+                     sentence_number(frame_time(*frames[0])) + " s and " +
+                     sentence_number(frame_time(*frames[1])) +
                      " s): in one run the next impact comes before the other run's first frame.";
         }
     }
@@ -355,7 +340,8 @@ void post_impact_velocity(const Scene& scene, const Box2dObservable& o, const Ru
             motion[r] = motion_in(*frames[r], *columns[r]);
         }
     }
-    const std::string after = " after impact " + std::to_string(o.impact) + " of " + quoted(o.body);
+    const std::string after =
+        " after impact " + std::to_string(o.impact) + " of " + single_quoted(o.body);
     struct Component {
         const char* name;
         const char* unit;
@@ -400,17 +386,18 @@ Reading largest_residual(const Scene& scene, const Box2dObservable& o, const Run
     }
     if (!largest) {
         return none(std::string("The ") + run.name + " run has no collision" +
-                    (o.body.empty() ? "" : " of " + quoted(o.body)) + " to measure.");
+                    (o.body.empty() ? "" : " of " + single_quoted(o.body)) + " to measure.");
     }
     return value(*largest);
 }
 
 void restitution_residual(const Scene& scene, const Box2dObservable& o, const Run (&runs)[2],
                           std::vector<ObservableRow>& out) {
-    out.push_back(row(
-        o,
-        "largest restitution residual" + (o.body.empty() ? std::string() : " of " + quoted(o.body)),
-        0.0, largest_residual(scene, o, runs[0]), largest_residual(scene, o, runs[1])));
+    out.push_back(row(o,
+                      "largest restitution residual" +
+                          (o.body.empty() ? std::string() : " of " + single_quoted(o.body)),
+                      0.0, largest_residual(scene, o, runs[0]),
+                      largest_residual(scene, o, runs[1])));
 }
 
 // ---------------------------------------------------------------- conserved quantities
@@ -420,8 +407,8 @@ Reading largest_drift(const Scene& scene, Kind kind, const Run& run) {
     std::string missing;
     const std::optional<std::vector<Mass>> masses = masses_of(scene, run.trajectory, missing);
     if (!masses) {
-        return none(std::string("The ") + run.name + " run has no columns for " + quoted(missing) +
-                    ".");
+        return none(std::string("The ") + run.name + " run has no columns for " +
+                    single_quoted(missing) + ".");
     }
     if (run.trajectory.frames.empty()) {
         return none(std::string("The ") + run.name + " run has no frames.");

@@ -2,6 +2,7 @@
 
 #include "input_error.h"
 #include "number_format.h"
+#include "record.h"
 #include "simulator.h"
 #include "tunnelling.h"
 

@@ -35,8 +35,4 @@ class Simulator {
 
 std::unique_ptr<Simulator> make_impulse_simulator(const Scene& scene);
 
-// Runs a simulator over the whole scene and records frames at t = 0 and after
-// every step, t = k dt.
-Trajectory record(Simulator& simulator, const Scene& scene);
-
 } // namespace impulse::harness

@@ -10,6 +10,7 @@
 
 #include "scene.h"
 #include "trajectory.h"
+#include "trajectory_columns.h"
 
 #include <cmath>
 #include <cstddef>
@@ -149,19 +150,6 @@ HeadOn head_on(const Scene& scene, const SceneBody& a, const SceneBody& b);
 
 // ---------------------------------------------------------------- reading a trajectory
 
-// Where one body's six values sit in a frame (DESIGN.md, trajectory format).
-struct BodyColumns {
-    std::size_t x = 0, y = 0, angle = 0, vx = 0, vy = 0, omega = 0;
-};
-
-// Empty when the trajectory lacks one of the body's columns.
-std::optional<BodyColumns> body_columns(const Trajectory& trajectory, const std::string& body);
-
-// A frame's value; a short frame (a broken trajectory) reads as NaN, which
-// fails every check.
-double value_at(const std::vector<double>& frame, std::size_t column);
-double frame_time(const std::vector<double>& frame);
-
 struct Motion {
     Vec2 position;
     double angle = 0.0;
@@ -170,10 +158,6 @@ struct Motion {
 };
 
 Motion motion_in(const std::vector<double>& frame, const BodyColumns& columns);
-
-bool involves(const TrajectoryEvent& event, const std::string& body);
-// The indices of the events that involve `body`, in order.
-std::vector<std::size_t> events_of(const Trajectory& trajectory, const std::string& body);
 
 // A dynamic body as the totals need it: mass, inertia (0 when it does not
 // rotate: its spin stays 0 and carries nothing) and where its columns are.

@@ -1,6 +1,7 @@
 #include "tunnelling.h"
 
 #include "input_error.h"
+#include "text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -19,10 +20,6 @@ std::string short_number(double value) {
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "%.4g", value);
     return buffer;
-}
-
-std::string quoted(const std::string& name) {
-    return "'" + name + "'";
 }
 
 std::string body_path(const Scene& scene, std::size_t index) {
@@ -157,8 +154,8 @@ TunnellingRefusal refusal(const Scene& scene, std::size_t fast, std::size_t slow
                   " s";
     return TunnellingRefusal{
         body_path(scene, fast),
-        quoted(a.name) + " and " + quoted(b.name) + " close at up to " + short_number(closing) +
-            " m/s" + gravity + ": " + short_number(closing * scene.dt) +
+        single_quoted(a.name) + " and " + single_quoted(b.name) + " close at up to " +
+            short_number(closing) + " m/s" + gravity + ": " + short_number(closing * scene.dt) +
             " m per step of dt = " + short_number(scene.dt) +
             " s, at least their combined thickness of " + short_number(thickness) +
             " m, so one could pass through the other between two steps without either end of "

@@ -92,7 +92,7 @@ struct Box2dSettings {
 
 // The scene's "gas" block as read, with its shape's mass properties resolved:
 // a frictionless gas of `count` equal bodies on a square lattice in a closed
-// square room (docs/formats.md, "The gas block"; harness/gas.h generates it).
+// square room (docs/formats.md, "The gas block"; harness/scene/gas.h generates it).
 struct GasSpec {
     int count = 0;
     Shape shape; // centred on its centroid (a polygon given off it is recentred)

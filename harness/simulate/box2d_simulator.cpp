@@ -9,6 +9,7 @@
 #include "input_error.h"
 #include "number_format.h"
 #include "single_precision.h"
+#include "text.h"
 
 #include <box2d/box2d.h>
 #include <cmath>
@@ -30,10 +31,6 @@ b2Vec2 to_b2(Vec2 v) {
 
 Vec2 from_b2(const b2Vec2& v) {
     return {static_cast<double>(v.x), static_cast<double>(v.y)};
-}
-
-std::string quoted(const std::string& s) {
-    return "\"" + s + "\"";
 }
 
 // Four significant digits: warnings are read by people, not parsed.
@@ -366,7 +363,7 @@ class Box2dSimulator final : public Simulator {
             {"damping", "0"},
             {"skin", format_double(skin)},
             {"continuous", scene_.solver.ccd ? "true" : "false"},
-            {"precision", quoted("single")},
+            {"precision", double_quoted("single")},
         };
     }
 

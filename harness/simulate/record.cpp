@@ -1,0 +1,79 @@
+// Recording a run: any Simulator over a whole scene, frame by frame, within
+// the trajectory size limit (docs/memory.md).
+#include "record.h"
+
+#include "memory_budget.h"
+#include "number_format.h"
+#include "progress.h"
+#include "trajectory_columns.h"
+
+#include <cstdint>
+#include <utility>
+
+namespace impulse::harness {
+
+Trajectory record(Simulator& simulator, const Scene& scene) {
+    Trajectory trajectory;
+    trajectory.scene = scene.name;
+    trajectory.scene_sha256 = scene.sha256;
+    trajectory.engine = simulator.engine();
+    trajectory.solver = simulator.settings();
+
+    std::vector<int> dynamic;
+    trajectory.columns.push_back("t");
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+        if (scene.bodies[i].is_static) {
+            continue;
+        }
+        dynamic.push_back(static_cast<int>(i));
+        for (const char* channel : body_channel_suffixes) {
+            trajectory.columns.push_back(scene.bodies[i].name + channel);
+        }
+    }
+
+    auto frame_at = [&](double t) {
+        std::vector<double> frame;
+        frame.reserve(trajectory.columns.size());
+        frame.push_back(t);
+        for (int index : dynamic) {
+            const BodyState s = simulator.state(index);
+            frame.insert(frame.end(), {s.position.x, s.position.y, s.angle, s.velocity.x,
+                                       s.velocity.y, s.angular_velocity});
+        }
+        return frame;
+    };
+
+    const long long steps = step_count(scene);
+    // The frames are known before the run: a trajectory that could exceed
+    // the limit is refused before anything is simulated (docs/memory.md).
+    TrajectorySize size =
+        header_size_bound(trajectory.columns) +
+        frames_size_bound(static_cast<std::uint64_t>(steps) + 1, trajectory.columns.size());
+    require_within_trajectory_limit(size, scene.file, "duration",
+                                    "the run would record " + std::to_string(steps + 1) +
+                                        " frames of " + std::to_string(trajectory.columns.size()) +
+                                        " numbers (" + std::to_string(steps) + " steps)",
+                                    true);
+    trajectory.frames.reserve(static_cast<std::size_t>(steps) + 1);
+    trajectory.frames.push_back(frame_at(0.0));
+    for (long long k = 0; k < steps; ++k) {
+        // Time as k dt, never accumulated, so it does not drift.
+        simulator.step(static_cast<double>(k) * scene.dt, scene.dt);
+        for (TrajectoryEvent& e : simulator.take_events()) {
+            // Events are not known up front: the run stops, with a sentence,
+            // at the first that could take the trajectory past the limit.
+            size = size + event_size_bound(e.a.size() + e.b.size());
+            require_within_trajectory_limit(
+                size, scene.file, "",
+                "the run stopped at t = " + format_double(e.t) + " s: its frames and " +
+                    std::to_string(trajectory.events.size() + 1) + " collision events so far",
+                true);
+            trajectory.events.push_back(std::move(e));
+        }
+        trajectory.frames.push_back(frame_at(static_cast<double>(k + 1) * scene.dt));
+        note_simulated_time(static_cast<double>(k + 1) * scene.dt, scene.duration);
+    }
+    return trajectory;
+}
+
+} // namespace impulse::harness

@@ -1,0 +1,134 @@
+#include "reference_comparison.h"
+
+#include "box2d_simulator.h"
+#include "input_error.h"
+#include "record.h"
+#include "run.h"
+#include "simulator.h"
+#include "single_precision.h"
+#include "tunnelling.h"
+
+#include <cstdio>
+#include <memory>
+#include <utility>
+
+namespace impulse::harness {
+
+namespace {
+
+// About six significant digits, as the verb's table shows times.
+std::string six_digits(double value) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.6g", value);
+    return buffer;
+}
+
+// The impulse engine refuses to go on where the seed model ends (a Zeno
+// cascade, a resting contact: README, "Canonical scenes"). Scenes end before
+// that with their own integrator; symplectic Euler loses a little speed in
+// every flight, so its bounces die out sooner and can reach the limit inside
+// the scene. The run then stops at the last step it completed and both runs
+// are compared up to there: the observables of the bounces before are sound.
+class StoppingSimulator final : public Simulator {
+  public:
+    explicit StoppingSimulator(std::unique_ptr<Simulator> inner) : inner_(std::move(inner)) {}
+
+    std::string engine() const override { return inner_->engine(); }
+    std::vector<std::pair<std::string, std::string>> settings() const override {
+        return inner_->settings();
+    }
+    void step(double t0, double dt) override {
+        if (stopped_at_) {
+            return;
+        }
+        try {
+            inner_->step(t0, dt);
+        } catch (const InputError& error) {
+            stopped_at_ = t0;
+            reason_ = error.what();
+        }
+    }
+    BodyState state(int index) const override { return inner_->state(index); }
+    std::vector<TrajectoryEvent> take_events() override { return inner_->take_events(); }
+
+    const std::optional<double>& stopped_at() const { return stopped_at_; }
+    const std::string& reason() const { return reason_; }
+
+  private:
+    std::unique_ptr<Simulator> inner_;
+    std::optional<double> stopped_at_;
+    std::string reason_;
+};
+
+// Keeps the frames and events up to time `end`.
+void truncate(Trajectory& trajectory, double end) {
+    const auto after = [end](double t) { return t > end; };
+    trajectory.frames.erase(
+        std::remove_if(trajectory.frames.begin(), trajectory.frames.end(),
+                       [&](const std::vector<double>& f) { return f.empty() || after(f.front()); }),
+        trajectory.frames.end());
+    trajectory.events.erase(std::remove_if(trajectory.events.begin(), trajectory.events.end(),
+                                           [&](const TrajectoryEvent& e) { return after(e.t); }),
+                            trajectory.events.end());
+}
+
+} // namespace
+
+ReferenceComparison compare_with_box2d(const std::string& path, const ReferenceOptions& options) {
+    const Scene scene = load_scene(path);
+    ReferenceComparison c;
+    c.name = scene.name;
+    c.file = scene.file;
+    c.warnings = scene.warnings;
+    c.scene_integrator = integrator_name(scene.solver.integrator);
+    // --dt is the step of both runs; the integrator is the impulse engine's only.
+    Overrides overrides;
+    overrides.dt = options.dt;
+    Scene box2d_scene = with_overrides(scene, overrides);
+    Box2dSettings& settings = box2d_scene.box2d;
+    settings.substeps = options.substeps.value_or(settings.substeps);
+    settings.velocity_iterations =
+        options.velocity_iterations.value_or(settings.velocity_iterations);
+    settings.position_iterations =
+        options.position_iterations.value_or(settings.position_iterations);
+    // A scene Box2D cannot represent is refused even when it names nothing
+    // to compare: asked to run it in Box2D, the answer is that it cannot.
+    require_single_precision(box2d_scene, "Box2D",
+                             box2d_scene.dt / static_cast<double>(settings.substeps));
+    if (scene.box2d.observables.empty()) {
+        return c;
+    }
+    if (!options.scene_integrator) {
+        overrides.integrator = Integrator::symplectic_euler;
+    }
+    const Scene impulse_scene = with_overrides(scene, overrides);
+
+    // Both refusals come before either run: a scene that would tunnel
+    // unseen, and one Box2D cannot represent (single_precision.h).
+    std::vector<std::string> warnings;
+    const std::unique_ptr<Simulator> box2d_simulator = make_box2d_simulator(box2d_scene, warnings);
+    refuse_tunnelling(impulse_scene);
+    StoppingSimulator impulse_simulator(make_impulse_simulator(impulse_scene));
+    Trajectory impulse = record(impulse_simulator, impulse_scene);
+    Trajectory box2d = record(*box2d_simulator, box2d_scene);
+    if (const std::optional<double> end = impulse_simulator.stopped_at()) {
+        truncate(impulse, *end);
+        truncate(box2d, *end);
+        c.stopped = "the impulse engine stopped in the step after t = " + six_digits(*end) +
+                    " s (" + impulse_simulator.reason() +
+                    "); both runs are compared up to t = " + six_digits(*end) + " s";
+    }
+
+    c.dt = box2d_scene.dt;
+    c.integrator = integrator_name(impulse_scene.solver.integrator);
+    c.box2d = settings;
+    c.impulse_engine = impulse.engine;
+    c.box2d_engine = box2d.engine;
+    c.warnings.insert(c.warnings.end(), warnings.begin(), warnings.end());
+    c.rows = compare_observables(box2d_scene, impulse, box2d);
+    c.impulse_run = std::move(impulse);
+    c.box2d_run = std::move(box2d);
+    return c;
+}
+
+} // namespace impulse::harness
