@@ -11,6 +11,7 @@
 #pragma once
 
 #include "body.h"
+#include "exact_answers.h"
 #include "scene.h"
 #include "trajectory.h"
 #include "tunnelling.h"
@@ -78,7 +79,7 @@ struct StressChecks {
     double offset = 0.0;
 };
 
-// The bounds, and why (stress.cpp derives each):
+// The bounds, and why (stress_monitor.cpp and stress_exact_answers.cpp derive each):
 // relative slack for energy never gained and momentum conserved;
 inline constexpr double stress_relative_slack = 1e-12;
 // energy change per collision at e = 1, in units of DBL_EPSILON of the kinetic
@@ -101,15 +102,22 @@ class StressMonitor {
     std::vector<StressRow> rows() const;
 
   private:
-    struct Totals {
-        Vec2 momentum;
-        double angular_momentum = 0.0;
-        double energy = 0.0;
-        double momentum_scale = 0.0;
-        double angular_momentum_scale = 0.0;
-        double energy_scale = 0.0;
-    };
+    // Momentum, angular momentum and energy with the scales of their terms
+    // (exact_answers.h), here from the engine's states.
     Totals totals_of(const std::vector<BodyState>& states) const;
+
+    // The steps of observe, one invariant each; false: a value is not finite.
+    bool observe_finite(double t, const std::vector<BodyState>& states);
+    void observe_penetration(double t, const std::vector<BodyState>& states);
+    void observe_sides(double t, const std::vector<BodyState>& states);
+    void observe_totals(double t, const std::vector<BodyState>& states);
+
+    // The steps of rows: finite, interpenetration and sides; then what
+    // rounding far from the origin can move a position by over the run; then
+    // momentum and energy, with that budget.
+    std::vector<StressRow> geometry_rows() const;
+    double position_budget() const;
+    void add_conservation_rows(std::vector<StressRow>& rows, double position_budget) const;
 
     const Scene* scene_;
     StressChecks checks_;
