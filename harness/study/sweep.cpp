@@ -7,6 +7,7 @@
 #include "run.h"
 #include "simulator.h"
 #include "single_precision.h"
+#include "text.h"
 #include "tunnelling.h"
 #ifdef IMPULSE_WITH_BOX2D
 #include "box2d_simulator.h"
@@ -188,6 +189,107 @@ void require_box2d_can_run(const Scene& scene, const SweepConfig& config) {
 #endif
 }
 
+// ccd sweeps every pair's whole motion at once; local stepping looks at one
+// pair at a time (the scene loader refuses the two together).
+std::vector<bool> ccd_settings(const Scene& scene, const SweepConfig& config) {
+    std::vector<bool> ccds = config.ccd.empty() ? std::vector<bool>{scene.solver.ccd} : config.ccd;
+    const bool any_ccd = std::find(ccds.begin(), ccds.end(), true) != ccds.end();
+    if (any_ccd && scene.solver.stepping == Stepping::local) {
+        throw InputError(scene.file, "solver.stepping",
+                         "ccd on is not available with \"stepping\": \"local\" in this version "
+                         "(local stepping looks at one pair at a time); sweep with --ccd off, "
+                         "or use \"stepping\": \"world\"");
+    }
+    return ccds;
+}
+
+// The grid. ccd varies fastest, so a point with it sits next to the same
+// point without.
+std::vector<SweepPoint> impulse_points(const SweepConfig& config, const std::vector<bool>& ccds) {
+    std::vector<SweepPoint> points;
+    for (const double dt : config.dts) {
+        for (const Integrator integrator : config.integrators) {
+            for (const TimeOfImpactMethod toi : config.toi_methods) {
+                for (const double tolerance : config.toi_tolerances) {
+                    for (const bool ccd : ccds) {
+                        SweepPoint p;
+                        p.dt = dt;
+                        p.integrator = integrator;
+                        p.toi = toi;
+                        p.toi_tolerance = tolerance;
+                        p.ccd = ccd;
+                        p.family = sweep_family(p);
+                        points.push_back(p);
+                    }
+                }
+            }
+        }
+    }
+    return points;
+}
+
+// Box2D's points, after the impulse engine's (none in a build without Box2D).
+void add_box2d_points(const SweepConfig& config, std::vector<SweepPoint>& points) {
+#ifdef IMPULSE_WITH_BOX2D
+    if (config.box2d) {
+        for (const double dt : config.dts) {
+            for (const int substeps : config.box2d_substeps) {
+                for (const auto& [velocity, position] : config.box2d_iterations) {
+                    SweepPoint p;
+                    p.box2d = true;
+                    p.dt = dt;
+                    p.substeps = substeps;
+                    p.velocity_iterations = velocity;
+                    p.position_iterations = position;
+                    p.family = sweep_family(p);
+                    points.push_back(p);
+                }
+            }
+        }
+    }
+#else
+    (void)config;
+    (void)points;
+#endif
+}
+
+// The scene with only its exact-answer expectations: what the error is
+// measured against when it declares any.
+Scene with_exact_expectations_only(const Scene& scene) {
+    Scene exact_only = scene;
+    exact_only.expectations.clear();
+    for (const Expectation& x : scene.expectations) {
+        if (is_exact_kind(x.kind)) {
+            exact_only.expectations.push_back(x);
+        }
+    }
+    return exact_only;
+}
+
+// A run at the finest settings, for a scene without exact answers; says in
+// `description` what it is.
+Trajectory reference_run(const Scene& scene, const SweepConfig& config, bool any_ccd,
+                         std::string& description) {
+    const double finest = *std::min_element(config.dts.begin(), config.dts.end()) / 4.0;
+    Scene s = scene;
+    s.solver.toi = TimeOfImpactMethod::secant;
+    s.solver.ccd = any_ccd; // a reference that tunnels is no reference
+    Overrides o;
+    o.dt = finest;
+    o.integrator = Integrator::rk4;
+    o.toi_tolerance = 1e-14;
+    s = with_overrides(std::move(s), o);
+    std::unique_ptr<Simulator> simulator = make_impulse_simulator(s);
+    Trajectory reference = record(*simulator, s); // a refusal here is the sweep's error
+    description = "against a reference run at the finest settings (impulse rk4, "
+                  "dt " +
+                  format_double(finest) + " s, secant, toi_tolerance 1e-14, ccd " +
+                  (any_ccd ? "on" : "off") +
+                  "): largest relative difference of the final frame's positions "
+                  "and velocities";
+    return reference;
+}
+
 } // namespace
 
 SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
@@ -203,56 +305,10 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
     result.repeats = config.repeats;
     result.simulated_duration = static_cast<double>(step_count(scene)) * scene.dt;
 
-    // ccd sweeps every pair's whole motion at once; local stepping looks at
-    // one pair at a time (the scene loader refuses the two together).
-    const std::vector<bool> ccds =
-        config.ccd.empty() ? std::vector<bool>{scene.solver.ccd} : config.ccd;
+    const std::vector<bool> ccds = ccd_settings(scene, config);
     const bool any_ccd = std::find(ccds.begin(), ccds.end(), true) != ccds.end();
-    if (any_ccd && scene.solver.stepping == Stepping::local) {
-        throw InputError(scene.file, "solver.stepping",
-                         "ccd on is not available with \"stepping\": \"local\" in this version "
-                         "(local stepping looks at one pair at a time); sweep with --ccd off, "
-                         "or use \"stepping\": \"world\"");
-    }
-
-    // The grid. ccd varies fastest, so a point with it sits next to the same
-    // point without.
-    for (const double dt : config.dts) {
-        for (const Integrator integrator : config.integrators) {
-            for (const TimeOfImpactMethod toi : config.toi_methods) {
-                for (const double tolerance : config.toi_tolerances) {
-                    for (const bool ccd : ccds) {
-                        SweepPoint p;
-                        p.dt = dt;
-                        p.integrator = integrator;
-                        p.toi = toi;
-                        p.toi_tolerance = tolerance;
-                        p.ccd = ccd;
-                        p.family = sweep_family(p);
-                        result.points.push_back(p);
-                    }
-                }
-            }
-        }
-    }
-#ifdef IMPULSE_WITH_BOX2D
-    if (config.box2d) {
-        for (const double dt : config.dts) {
-            for (const int substeps : config.box2d_substeps) {
-                for (const auto& [velocity, position] : config.box2d_iterations) {
-                    SweepPoint p;
-                    p.box2d = true;
-                    p.dt = dt;
-                    p.substeps = substeps;
-                    p.velocity_iterations = velocity;
-                    p.position_iterations = position;
-                    p.family = sweep_family(p);
-                    result.points.push_back(p);
-                }
-            }
-        }
-    }
-#endif
+    result.points = impulse_points(config, ccds);
+    add_box2d_points(config, result.points);
     if (result.points.empty()) {
         throw InputError(scene.file, "", "the sweep's grid is empty");
     }
@@ -265,39 +321,17 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
     require_box2d_can_run(scene, config);
 
     // What the error is measured against.
-    Scene exact_only = scene;
-    exact_only.expectations.clear();
-    for (const Expectation& x : scene.expectations) {
-        if (is_exact_kind(x.kind)) {
-            exact_only.expectations.push_back(x);
-        }
-    }
+    const Scene exact_only = with_exact_expectations_only(scene);
     result.against_exact = !exact_only.expectations.empty();
     Trajectory reference;
     if (result.against_exact) {
-        result.error_reference = "against the exact answers the scene declares (" +
-                                 std::to_string(exact_only.expectations.size()) + " expectation" +
-                                 (exact_only.expectations.size() == 1 ? "" : "s") +
-                                 "): largest |actual - expected| / max(|expected|, " +
-                                 format_double(sweep_error_floor) + ")";
+        result.error_reference =
+            "against the exact answers the scene declares (" +
+            plural(exact_only.expectations.size(), "expectation", "expectations") +
+            "): largest |actual - expected| / max(|expected|, " + format_double(sweep_error_floor) +
+            ")";
     } else {
-        const double finest = *std::min_element(config.dts.begin(), config.dts.end()) / 4.0;
-        Scene s = scene;
-        s.solver.toi = TimeOfImpactMethod::secant;
-        s.solver.ccd = any_ccd; // a reference that tunnels is no reference
-        Overrides o;
-        o.dt = finest;
-        o.integrator = Integrator::rk4;
-        o.toi_tolerance = 1e-14;
-        s = with_overrides(std::move(s), o);
-        std::unique_ptr<Simulator> simulator = make_impulse_simulator(s);
-        reference = record(*simulator, s); // a refusal here is the sweep's error
-        result.error_reference = "against a reference run at the finest settings (impulse rk4, "
-                                 "dt " +
-                                 format_double(finest) + " s, secant, toi_tolerance 1e-14, ccd " +
-                                 (any_ccd ? "on" : "off") +
-                                 "): largest relative difference of the final frame's positions "
-                                 "and velocities";
+        reference = reference_run(scene, config, any_ccd, result.error_reference);
     }
 
     const std::size_t total = result.points.size();
