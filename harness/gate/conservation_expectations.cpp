@@ -1,0 +1,109 @@
+// The conservation expectations: momentum, angular momentum and energy
+// conserved in free space, and energy that never increases with e < 1.
+#include "expectation_checks.h"
+
+#include <limits>
+
+namespace impulse::harness {
+
+namespace {
+
+// A conserved quantity as scalar components (momentum has two) and the scale
+// of its terms.
+std::vector<double> components_of(const Totals& t, const std::string& quantity) {
+    if (quantity == "momentum") {
+        return {t.momentum.x, t.momentum.y};
+    }
+    return {quantity == "angular_momentum" ? t.angular_momentum : t.energy};
+}
+
+double scale_of(const Totals& t, const std::string& quantity) {
+    if (quantity == "momentum") {
+        return t.momentum_scale;
+    }
+    return quantity == "angular_momentum" ? t.angular_momentum_scale : t.energy_scale;
+}
+
+} // namespace
+
+// PHYSICS.md: frictionless contact in free space conserves momentum and
+// angular momentum; with e = 1, energy. Every frame is compared with frame 0
+// and the frame where the quantity strays furthest is reported.
+void check_conserved(const Scene& scene, const Trajectory& trajectory, Checks& checks) {
+    const std::optional<std::vector<Mass>> masses = masses_of(scene, trajectory, checks);
+    if (!masses) {
+        return;
+    }
+    std::vector<Totals> totals;
+    totals.reserve(trajectory.frames.size());
+    for (const std::vector<double>& frame : trajectory.frames) {
+        totals.push_back(totals_in(frame, *masses, scene.gravity));
+    }
+    for (const std::string& quantity : checks.expectation().quantities) {
+        const std::vector<double> initial = components_of(totals.front(), quantity);
+        std::size_t worst_frame = 0;
+        std::size_t worst_component = 0;
+        double largest = 0.0;
+        for (std::size_t k = 0; k < totals.size(); ++k) {
+            const std::vector<double> now = components_of(totals[k], quantity);
+            for (std::size_t c = 0; c < now.size(); ++c) {
+                const double off = std::abs(now[c] - initial[c]);
+                // NaN is the worst of all: it is what a blown-up run leaves.
+                if (off > largest || (std::isnan(off) && !std::isnan(largest))) {
+                    largest = off;
+                    worst_frame = k;
+                    worst_component = c;
+                }
+            }
+        }
+        std::string name = quantity == "angular_momentum" ? "angular momentum" : quantity;
+        if (initial.size() == 2) {
+            name += worst_component == 0 ? " (x)" : " (y)";
+        }
+        const double t = frame_time(trajectory.frames[worst_frame]);
+        checks.value("conserved " + name + ", furthest from t = 0 at t = " + sentence_number(t) +
+                         " s",
+                     {initial[worst_component], scale_of(totals.front(), quantity)},
+                     components_of(totals[worst_frame], quantity)[worst_component]);
+    }
+}
+
+// PHYSICS.md: "with e < 1 energy never increases". One result: the largest
+// rise from one frame to the next, judged against the energy's scale at t = 0.
+void check_energy_non_increasing(const Scene& scene, const Trajectory& trajectory, Checks& checks) {
+    const std::optional<std::vector<Mass>> masses = masses_of(scene, trajectory, checks);
+    if (!masses) {
+        return;
+    }
+    const Totals initial = totals_in(trajectory.frames.front(), *masses, scene.gravity);
+    std::size_t worst = 0;
+    double before = initial.energy;
+    double after = initial.energy;
+    double largest_rise = -std::numeric_limits<double>::infinity();
+    double previous = initial.energy;
+    for (std::size_t k = 1; k < trajectory.frames.size(); ++k) {
+        const double energy = totals_in(trajectory.frames[k], *masses, scene.gravity).energy;
+        const double rise = energy - previous;
+        if (rise > largest_rise || std::isnan(rise)) {
+            largest_rise = std::isnan(rise) ? std::numeric_limits<double>::infinity() : rise;
+            worst = k;
+            before = previous;
+            after = energy;
+        }
+        previous = energy;
+    }
+    const double t = frame_time(trajectory.frames[worst]);
+    // E(k) <= E(k-1) + atol + rtol * scale: one-sided, a fall is always fine.
+    const Expectation& x = checks.expectation();
+    const double allowed = x.atol + x.rtol * initial.energy_scale;
+    checks.judged("energy non-increasing, largest rise at t = " + sentence_number(t) + " s",
+                  after <= before + allowed, before, after,
+                  "the energy rose by " + sentence_number(after - before) +
+                      " J in the step to t = " + sentence_number(t) + " s, more than the " +
+                      sentence_number(allowed) + " allowed (atol " + sentence_number(x.atol) +
+                      " + rtol " + sentence_number(x.rtol) + " x " +
+                      sentence_number(initial.energy_scale) + ")",
+                  allowed);
+}
+
+} // namespace impulse::harness
