@@ -6,6 +6,8 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstddef>
+#include <iterator>
 #include <system_error>
 
 namespace impulse::harness {
@@ -77,15 +79,9 @@ std::string verdict_counts(const CheckCounts& c) {
 }
 
 const char* status_word(Status status) {
-    switch (status) {
-    case Status::passed:
-        return "passed";
-    case Status::failed:
-        return "failed";
-    case Status::error:
-        return "error";
-    }
-    return "error";
+    constexpr const char* words[] = {"passed", "failed", "error"}; // in Status's order
+    const auto i = static_cast<std::size_t>(status);
+    return i < std::size(words) ? words[i] : "error";
 }
 
 std::string display_name(const SceneCheck& check) {

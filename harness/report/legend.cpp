@@ -24,6 +24,20 @@ std::string swatch_circle(double x, double cy, const std::string& rest) {
     return "<circle" + attr("cx", f2(x + 13.0)) + attr("cy", f2(cy)) + rest + "/>\n";
 }
 
+// The radius and paint of the marks drawn as circles: a contact point, a
+// golden contact (a ring) and the first divergence.
+std::string circle_paint(LegendItem::Kind kind) {
+    if (kind == LegendItem::Kind::contact) {
+        return std::string(" r=\"3.5\" fill=\"") + event_colour + "\"";
+    }
+    if (kind == LegendItem::Kind::ring) {
+        return std::string(" r=\"5\" fill=\"none\" stroke=\"") + event_colour +
+               "\" stroke-width=\"1.2\" opacity=\"0.6\"";
+    }
+    return std::string(" r=\"6\" fill=\"none\" stroke=\"") + divergence_colour +
+           "\" stroke-width=\"2\"";
+}
+
 // A line, with a body's disc or square on it.
 void line_swatch(std::string& out, const LegendItem& item, double x, double cy) {
     const std::string& c = item.colour;
@@ -54,21 +68,13 @@ void swatch(std::string& out, const LegendItem& item, double x, double cy) {
                static_stroke + "\"/>\n";
         break;
     case Kind::contact:
-        out += swatch_circle(x, cy, std::string(" r=\"3.5\" fill=\"") + event_colour + "\"");
-        break;
     case Kind::ring:
-        out += swatch_circle(x, cy,
-                             std::string(" r=\"5\" fill=\"none\" stroke=\"") + event_colour +
-                                 "\" stroke-width=\"1.2\" opacity=\"0.6\"");
+    case Kind::divergence:
+        out += swatch_circle(x, cy, circle_paint(item.kind));
         break;
     case Kind::normal:
         out += "<path" + attr("d", arrow_d(x + 2.0, cy, Vec2{1.0, 0.0}, 24.0)) + " stroke=\"" +
                event_colour + "\" stroke-width=\"1.4\" fill=\"" + event_colour + "\"/>\n";
-        break;
-    case Kind::divergence:
-        out += swatch_circle(x, cy,
-                             std::string(" r=\"6\" fill=\"none\" stroke=\"") + divergence_colour +
-                                 "\" stroke-width=\"2\"");
         break;
     case Kind::note:
         break;
