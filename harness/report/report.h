@@ -1,16 +1,17 @@
-// The gate's reports: a summary fit for a pull-request comment and an HTML
-// page per run, written to `check --report DIR`; and JUnit XML for CI.
+// The gate's reports written to `check --report DIR`: summary.md (summary.h),
+// index.html and the failed scenes' pictures (html_report.h). JUnit XML for CI
+// is junit.h; both are included here for the callers that write either.
 #pragma once
 
+#include "junit.h"
 #include "scene_check.h"
+#include "summary.h"
 
 #include <string>
 #include <vector>
 
 namespace impulse::harness {
 
-std::string junit_xml(const std::vector<SceneCheck>& checks);
-std::string summary_markdown(const std::vector<SceneCheck>& checks);
 // Writes summary.md, index.html and one SVG per failed scene into dir
 // (created if missing); throws InputError when it cannot.
 void write_report(const std::string& dir, const std::vector<SceneCheck>& checks);

@@ -11,6 +11,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace impulse::harness {
@@ -20,10 +21,45 @@ namespace {
 // Errors of exactly 0 (and anything below) are drawn at this floor.
 constexpr double plot_error_floor = 1e-17;
 
-} // namespace
+double log_cost(const SweepPoint& p) {
+    return std::log10(p.cost_median);
+}
 
-std::string sweep_svg(const SweepResult& r) {
-    constexpr double height = 560, left = 80, top = 50, bottom = 60, plot_w = 550;
+double log_error(const SweepPoint& p) {
+    return std::log10(std::max(p.error, plot_error_floor));
+}
+
+constexpr std::string_view ccd_suffix = "+ccd";
+
+bool is_ccd(const std::string& f) {
+    return f.size() > ccd_suffix.size() &&
+           f.compare(f.size() - ccd_suffix.size(), ccd_suffix.size(), ccd_suffix) == 0;
+}
+
+std::string base_of(const std::string& f) {
+    return is_ccd(f) ? f.substr(0, f.size() - ccd_suffix.size()) : f;
+}
+
+std::string dashes(const std::string& f) {
+    if (f == "box2d") {
+        return " stroke-dasharray=\"8 4\"";
+    }
+    return is_ccd(f) ? " stroke-dasharray=\"2 3\"" : "";
+}
+
+// The plot's size, the points drawn and the whole decades around them.
+struct SweepLayout {
+    static constexpr double height = 560, left = 80, top = 50, bottom = 60, plot_w = 550;
+    double width = 0.0, plot_h = 0.0;
+    std::vector<const SweepPoint*> drawn;
+    double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
+
+    double px(double v) const { return left + (v - x0) / (x1 - x0) * plot_w; }
+    double py(double v) const { return top + (y1 - v) / (y1 - y0) * plot_h; }
+};
+
+SweepLayout sweep_layout(const SweepResult& r) {
+    SweepLayout l;
     // The legend's column as wide as its longest label needs (about 7 px a
     // character at 12 px): "impulse symplectic-euler/bisection+ccd" is long.
     std::size_t longest = 0;
@@ -31,51 +67,45 @@ std::string sweep_svg(const SweepResult& r) {
         longest = std::max(longest, p.box2d ? std::string("Box2D 2.4.1").size() : p.family.size());
     }
     const double right = std::max(250.0, 50.0 + 7.0 * static_cast<double>(longest));
-    const double width = left + plot_w + right, plot_h = height - top - bottom;
-    std::vector<const SweepPoint*> drawn;
+    l.width = SweepLayout::left + SweepLayout::plot_w + right;
+    l.plot_h = SweepLayout::height - SweepLayout::top - SweepLayout::bottom;
     for (const SweepPoint& p : r.points) {
         if (p.ok && std::isfinite(p.error) && p.cost_median > 0.0) {
-            drawn.push_back(&p);
+            l.drawn.push_back(&p);
         }
     }
-    auto lx = [](const SweepPoint& p) { return std::log10(p.cost_median); };
-    auto ly = [](const SweepPoint& p) { return std::log10(std::max(p.error, plot_error_floor)); };
-    double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
-    if (!drawn.empty()) {
-        x0 = y0 = 1e300;
-        x1 = y1 = -1e300;
-        for (const SweepPoint* p : drawn) {
-            x0 = std::min(x0, lx(*p));
-            x1 = std::max(x1, lx(*p));
-            y0 = std::min(y0, ly(*p));
-            y1 = std::max(y1, ly(*p));
+    if (!l.drawn.empty()) {
+        l.x0 = l.y0 = 1e300;
+        l.x1 = l.y1 = -1e300;
+        for (const SweepPoint* p : l.drawn) {
+            l.x0 = std::min(l.x0, log_cost(*p));
+            l.x1 = std::max(l.x1, log_cost(*p));
+            l.y0 = std::min(l.y0, log_error(*p));
+            l.y1 = std::max(l.y1, log_error(*p));
         }
-        x0 = std::floor(x0);
-        x1 = std::max(std::ceil(x1), x0 + 1);
-        y0 = std::floor(y0);
-        y1 = std::max(std::ceil(y1), y0 + 1);
+        l.x0 = std::floor(l.x0);
+        l.x1 = std::max(std::ceil(l.x1), l.x0 + 1);
+        l.y0 = std::floor(l.y0);
+        l.y1 = std::max(std::ceil(l.y1), l.y0 + 1);
     }
-    auto px = [&](double v) { return left + (v - x0) / (x1 - x0) * plot_w; };
-    auto py = [&](double v) { return top + (y1 - v) / (y1 - y0) * plot_h; };
+    return l;
+}
 
-    // Families in first-appearance order; Box2D drawn last and distinct; a
-    // "+ccd" family in its sibling's colour, dotted.
+// Families in first-appearance order.
+std::vector<std::string> families_of(const SweepResult& r) {
     std::vector<std::string> families;
     for (const SweepPoint& p : r.points) {
         if (std::find(families.begin(), families.end(), p.family) == families.end()) {
             families.push_back(p.family);
         }
     }
+    return families;
+}
+
+// Box2D in red; a "+ccd" family in its sibling's colour.
+std::map<std::string, std::string> family_colours(const std::vector<std::string>& families) {
     const char* palette[] = {"#1f77b4", "#aec7e8", "#ff7f0e", "#ffbb78", "#2ca02c",
                              "#98df8a", "#9467bd", "#c5b0d5", "#8c564b", "#e377c2"};
-    const std::string ccd_suffix = "+ccd";
-    auto is_ccd = [&](const std::string& f) {
-        return f.size() > ccd_suffix.size() &&
-               f.compare(f.size() - ccd_suffix.size(), ccd_suffix.size(), ccd_suffix) == 0;
-    };
-    auto base_of = [&](const std::string& f) {
-        return is_ccd(f) ? f.substr(0, f.size() - ccd_suffix.size()) : f;
-    };
     std::map<std::string, std::string> base_colour;
     std::size_t next = 0;
     for (const std::string& f : families) {
@@ -88,17 +118,15 @@ std::string sweep_svg(const SweepResult& r) {
     for (const std::string& f : families) {
         colour[f] = base_colour[base_of(f)];
     }
-    auto dashes = [&](const std::string& f) -> std::string {
-        if (f == "box2d") {
-            return " stroke-dasharray=\"8 4\"";
-        }
-        return is_ccd(f) ? " stroke-dasharray=\"2 3\"" : "";
-    };
+    return colour;
+}
 
-    std::ostringstream s;
+// The document, its title and the plot's frame.
+void draw_header(std::ostringstream& s, const SweepLayout& l, const SweepResult& r) {
+    const double left = SweepLayout::left, top = SweepLayout::top, height = SweepLayout::height;
     s << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-    s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << fixed_text(width, 0)
-      << "\" height=\"" << fixed_text(height, 0) << "\" viewBox=\"0 0 " << fixed_text(width, 0)
+    s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << fixed_text(l.width, 0)
+      << "\" height=\"" << fixed_text(height, 0) << "\" viewBox=\"0 0 " << fixed_text(l.width, 0)
       << " " << fixed_text(height, 0) << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
     s << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
     s << "<text x=\"" << fixed_text(left, 0) << "\" y=\"24\" font-size=\"15\">"
@@ -109,42 +137,59 @@ std::string sweep_svg(const SweepResult& r) {
       << "</text>\n";
     // Axes and decade ticks.
     s << "<rect x=\"" << fixed_text(left, 1) << "\" y=\"" << fixed_text(top, 1) << "\" width=\""
-      << fixed_text(plot_w, 1) << "\" height=\"" << fixed_text(plot_h, 1)
+      << fixed_text(SweepLayout::plot_w, 1) << "\" height=\"" << fixed_text(l.plot_h, 1)
       << "\" fill=\"none\" stroke=\"#333\"/>\n";
+}
+
+// Decade grid lines with their labels, and the axes' names.
+void draw_axes(std::ostringstream& s, const SweepLayout& l) {
+    const double left = SweepLayout::left, top = SweepLayout::top, plot_w = SweepLayout::plot_w;
+    const double plot_h = l.plot_h;
     // Integer tick counts: the ends are whole decades, and a floating-point
     // loop counter could gain or lose a tick to rounding.
-    const int x_ticks = static_cast<int>(std::lround(x1 - x0));
+    const int x_ticks = static_cast<int>(std::lround(l.x1 - l.x0));
     for (int k = 0; k <= x_ticks; ++k) {
-        const double d = x0 + k;
-        s << "<line x1=\"" << fixed_text(px(d), 1) << "\" y1=\"" << fixed_text(top, 1) << "\" x2=\""
-          << fixed_text(px(d), 1) << "\" y2=\"" << fixed_text(top + plot_h, 1)
+        const double d = l.x0 + k;
+        s << "<line x1=\"" << fixed_text(l.px(d), 1) << "\" y1=\"" << fixed_text(top, 1)
+          << "\" x2=\"" << fixed_text(l.px(d), 1) << "\" y2=\"" << fixed_text(top + plot_h, 1)
           << "\" stroke=\"#ddd\"/>\n";
-        s << "<text x=\"" << fixed_text(px(d), 1) << "\" y=\"" << fixed_text(top + plot_h + 16, 1)
+        s << "<text x=\"" << fixed_text(l.px(d), 1) << "\" y=\"" << fixed_text(top + plot_h + 16, 1)
           << "\" text-anchor=\"middle\">1e" << fixed_text(d, 0) << "</text>\n";
     }
-    const double ystep = y1 - y0 > 12 ? 2.0 : 1.0;
-    const int y_ticks = static_cast<int>(std::lround(y1 - y0)) / static_cast<int>(ystep);
+    const double ystep = l.y1 - l.y0 > 12 ? 2.0 : 1.0;
+    const int y_ticks = static_cast<int>(std::lround(l.y1 - l.y0)) / static_cast<int>(ystep);
     for (int k = 0; k <= y_ticks; ++k) {
-        const double d = y0 + k * ystep;
-        s << "<line x1=\"" << fixed_text(left, 1) << "\" y1=\"" << fixed_text(py(d), 1)
-          << "\" x2=\"" << fixed_text(left + plot_w, 1) << "\" y2=\"" << fixed_text(py(d), 1)
+        const double d = l.y0 + k * ystep;
+        s << "<line x1=\"" << fixed_text(left, 1) << "\" y1=\"" << fixed_text(l.py(d), 1)
+          << "\" x2=\"" << fixed_text(left + plot_w, 1) << "\" y2=\"" << fixed_text(l.py(d), 1)
           << "\" stroke=\"#ddd\"/>\n";
-        s << "<text x=\"" << fixed_text(left - 6, 1) << "\" y=\"" << fixed_text(py(d) + 4, 1)
+        s << "<text x=\"" << fixed_text(left - 6, 1) << "\" y=\"" << fixed_text(l.py(d) + 4, 1)
           << "\" text-anchor=\"end\">1e" << fixed_text(d, 0) << "</text>\n";
     }
-    s << "<text x=\"" << fixed_text(left + plot_w / 2, 1) << "\" y=\"" << fixed_text(height - 16, 1)
+    s << "<text x=\"" << fixed_text(left + plot_w / 2, 1) << "\" y=\""
+      << fixed_text(SweepLayout::height - 16, 1)
       << "\" text-anchor=\"middle\">cost: wall time per simulated second (s/s, log)</text>\n";
     s << "<text transform=\"translate(20," << fixed_text(top + plot_h / 2, 1)
       << ") rotate(-90)\" text-anchor=\"middle\">error (relative, log; 0 drawn at 1e-17)</text>\n";
-    // All points, faint.
-    for (const SweepPoint* p : drawn) {
-        s << "<circle cx=\"" << fixed_text(px(lx(*p)), 2) << "\" cy=\"" << fixed_text(py(ly(*p)), 2)
-          << "\" r=\"2.5\" fill=\"" << colour[p->family] << "\" fill-opacity=\"0.25\"/>\n";
+}
+
+// All points, faint.
+void draw_points(std::ostringstream& s, const SweepLayout& l,
+                 std::map<std::string, std::string>& colour) {
+    for (const SweepPoint* p : l.drawn) {
+        s << "<circle cx=\"" << fixed_text(l.px(log_cost(*p)), 2) << "\" cy=\""
+          << fixed_text(l.py(log_error(*p)), 2) << "\" r=\"2.5\" fill=\"" << colour[p->family]
+          << "\" fill-opacity=\"0.25\"/>\n";
     }
-    // Each family's front, Box2D's thick and dashed.
+}
+
+// Each family's front, Box2D's thick and dashed.
+void draw_fronts(std::ostringstream& s, const SweepLayout& l,
+                 const std::vector<std::string>& families,
+                 std::map<std::string, std::string>& colour) {
     for (const std::string& f : families) {
         std::vector<const SweepPoint*> front;
-        for (const SweepPoint* p : drawn) {
+        for (const SweepPoint* p : l.drawn) {
             if (p->family == f && p->on_front) {
                 front.push_back(p);
             }
@@ -152,25 +197,29 @@ std::string sweep_svg(const SweepResult& r) {
         if (front.empty()) {
             continue;
         }
-        std::sort(front.begin(), front.end(),
-                  [&](const SweepPoint* a, const SweepPoint* b) { return lx(*a) < lx(*b); });
+        std::sort(front.begin(), front.end(), [&](const SweepPoint* a, const SweepPoint* b) {
+            return log_cost(*a) < log_cost(*b);
+        });
         const bool box2d = f == "box2d";
         s << "<polyline fill=\"none\" stroke=\"" << colour[f] << "\" stroke-width=\""
           << (box2d ? "3" : "1.5") << "\"" << dashes(f) << " points=\"";
         for (std::size_t i = 0; i < front.size(); ++i) {
-            s << (i ? " " : "") << fixed_text(px(lx(*front[i])), 2) << ","
-              << fixed_text(py(ly(*front[i])), 2);
+            s << (i ? " " : "") << fixed_text(l.px(log_cost(*front[i])), 2) << ","
+              << fixed_text(l.py(log_error(*front[i])), 2);
         }
         s << "\"/>\n";
         for (const SweepPoint* p : front) {
-            s << "<circle cx=\"" << fixed_text(px(lx(*p)), 2) << "\" cy=\""
-              << fixed_text(py(ly(*p)), 2) << "\" r=\"" << (box2d ? "4" : "3") << "\" fill=\""
-              << colour[f] << "\"/>\n";
+            s << "<circle cx=\"" << fixed_text(l.px(log_cost(*p)), 2) << "\" cy=\""
+              << fixed_text(l.py(log_error(*p)), 2) << "\" r=\"" << (box2d ? "4" : "3")
+              << "\" fill=\"" << colour[f] << "\"/>\n";
         }
     }
-    // Legend.
-    double ly0 = top + 10;
-    const double lx0 = left + plot_w + 20;
+}
+
+void draw_sweep_legend(std::ostringstream& s, const std::vector<std::string>& families,
+                       std::map<std::string, std::string>& colour) {
+    double ly0 = SweepLayout::top + 10;
+    const double lx0 = SweepLayout::left + SweepLayout::plot_w + 20;
     for (const std::string& f : families) {
         const bool box2d = f == "box2d";
         s << "<line x1=\"" << fixed_text(lx0, 1) << "\" y1=\"" << fixed_text(ly0, 1) << "\" x2=\""
@@ -185,6 +234,22 @@ std::string sweep_svg(const SweepResult& r) {
       << "\" font-size=\"10\" fill=\"#555\">lines: Pareto fronts"
       << (std::any_of(families.begin(), families.end(), is_ccd) ? " (dotted: +ccd)" : "")
       << "; dots: all points</text>\n";
+}
+
+} // namespace
+
+std::string sweep_svg(const SweepResult& r) {
+    const SweepLayout layout = sweep_layout(r);
+    // Families in first-appearance order; Box2D drawn last and distinct; a
+    // "+ccd" family in its sibling's colour, dotted.
+    const std::vector<std::string> families = families_of(r);
+    std::map<std::string, std::string> colour = family_colours(families);
+    std::ostringstream s;
+    draw_header(s, layout, r);
+    draw_axes(s, layout);
+    draw_points(s, layout, colour);
+    draw_fronts(s, layout, families, colour);
+    draw_sweep_legend(s, families, colour);
     s << "</svg>\n";
     return s.str();
 }
