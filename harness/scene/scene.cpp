@@ -53,6 +53,7 @@ static_assert(std::size(contact_mode_names) == static_cast<std::size_t>(contact_
 static_assert(std::size(vertex_normal_names) == static_cast<std::size_t>(vertex_normal_count));
 static_assert(std::size(stepping_names) == static_cast<std::size_t>(stepping_count));
 
+// The name of `value` in its enum's table.
 template <class Enum, std::size_t N>
 const char* name_in(const char* const (&names)[N], Enum value) {
     const auto index = static_cast<std::size_t>(value);
