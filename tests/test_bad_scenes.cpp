@@ -207,7 +207,7 @@ TEST_CASE("A scene with the wrong schema, types or keys is exit 2 naming the JSO
                  "unknown key (did you mean spacing?)"),
         bad_text("an unknown key that is no typo",
                  scene_edit("\"gravity\"", "\"comment\": \"x\", \"gravity\""), "comment",
-                 "unknown key; expected one of"),
+                 "unknown key; the keys allowed here are"),
         bad_text("an unknown key that is not an identifier",
                  scene_edit("\"gravity\"", "\"we ird\": 1, \"gravity\""), "[\"we ird\"]",
                  "unknown key"),

@@ -100,9 +100,10 @@ TEST_CASE("rejected box2d blocks: the block and its settings", "[scene]") {
         require_rejected(with_box2d("[]"), "box2d", "must be an object, got an array");
     }
     SECTION("unknown key") {
-        require_rejected(with_box2d(R"({"substep": 2})"), "box2d.substep",
-                         "unknown key (did you mean substeps?); expected one of substeps, "
-                         "velocity_iterations, position_iterations, observables");
+        require_rejected(
+            with_box2d(R"({"substep": 2})"), "box2d.substep",
+            "unknown key (did you mean substeps?); the keys allowed here are substeps, "
+            "velocity_iterations, position_iterations, observables");
     }
     SECTION("substeps 0") {
         require_rejected(with_box2d(R"({"substeps": 0})"), "box2d.substeps",
@@ -145,7 +146,7 @@ TEST_CASE("rejected box2d observables: kind, keys and tolerance", "[scene]") {
     SECTION("a key of another kind") {
         require_rejected(
             with_box2d(observing(R"({"kind": "momentum", "body": "ball", "atol": 1})")),
-            "box2d.observables[0].body", "unknown key; expected one of kind, atol, rtol");
+            "box2d.observables[0].body", "unknown key; the keys allowed here are kind, atol, rtol");
     }
     SECTION("a typo in a key") {
         require_rejected(with_box2d(observing(R"({"kind": "apex-heights", "body": "ball", "cont": 2,

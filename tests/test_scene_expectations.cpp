@@ -190,7 +190,8 @@ TEST_CASE("rejected expectations: the list and the common keys", "[scene]") {
     SECTION("a key of another kind") {
         require_rejected(
             expecting(R"([{"kind": "energy-non-increasing", "body": "ball", "rtol": 1e-9}])"),
-            "expectations[0].body", "unknown key; expected one of kind, description, atol, rtol");
+            "expectations[0].body",
+            "unknown key; the keys allowed here are kind, description, atol, rtol");
     }
     SECTION("no tolerance") {
         require_rejected(expecting(R"([{"kind": "energy-non-increasing"}])"), "expectations[0]",

@@ -377,11 +377,11 @@ TEST_CASE("broken trajectory files are InputErrors naming file and path", "[traj
     }
     SECTION("missing key") {
         check_rejected(replace_once(good, "  \"engine\": \"impulse 0.1.0\",\n", ""), "engine",
-                       "required key is missing");
+                       "is required but missing");
     }
     SECTION("missing key in an event") {
         check_rejected(replace_once(good, "\"impulse\": 3.21, ", ""), "events[0].impulse",
-                       "required key is missing");
+                       "is required but missing");
     }
     SECTION("unknown key at the top level") {
         check_rejected(replace_once(good, "  \"engine\"", "  \"comment\": \"hi\",\n  \"engine\""),

@@ -11,83 +11,6 @@
 
 namespace impulse::harness::trajectory_fields {
 
-[[noreturn]] void fail(const std::string& path, const std::string& message) {
-    throw Invalid{path, message};
-}
-
-// `got "abc"`, `got true`, `got an array`: what was found instead, short
-// enough for one line.
-std::string got(const Json& value) {
-    if (value.is_object()) {
-        return "got an object";
-    }
-    if (value.is_array()) {
-        return "got an array";
-    }
-    std::string text = value.dump();
-    constexpr std::size_t longest = 40;
-    if (text.size() > longest) {
-        std::size_t cut = longest;
-        // never cut a UTF-8 sequence in half
-        while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0U) == 0x80U) {
-            --cut;
-        }
-        text = text.substr(0, cut) + "...";
-    }
-    return "got " + text;
-}
-
-// Every type below is checked before get<>(), so nlohmann's type_error never
-// escapes.
-
-void require_object(const Json& value, const std::string& path) {
-    if (!value.is_object()) {
-        fail(path, "must be an object, " + got(value));
-    }
-}
-
-void require_array(const Json& value, const std::string& path) {
-    if (!value.is_array()) {
-        fail(path, "must be an array, " + got(value));
-    }
-}
-
-const Json& require_key(const Json& object, const std::string& path, const std::string& key) {
-    const auto found = object.find(key);
-    if (found == object.end()) {
-        fail(json_member_path(path, key), "the required key is missing");
-    }
-    return *found;
-}
-
-// Refuses keys outside `allowed`, naming the first one found.
-void reject_unknown_keys(const Json& object, const std::string& path,
-                         const std::vector<std::string>& allowed) {
-    for (const auto& item : object.items()) {
-        bool known = false;
-        for (const std::string& name : allowed) {
-            known = known || item.key() == name;
-        }
-        if (!known) {
-            std::string names;
-            for (const std::string& name : allowed) {
-                names += (names.empty() ? "" : ", ") + name;
-            }
-            const std::string closest = closest_known_key(item.key(), allowed);
-            fail(json_member_path(path, item.key()),
-                 (closest.empty() ? "unknown key" : "unknown key (did you mean " + closest + "?)") +
-                     "; the keys allowed here are " + names);
-        }
-    }
-}
-
-std::string read_string(const Json& value, const std::string& path) {
-    if (!value.is_string()) {
-        fail(path, "must be a string, " + got(value));
-    }
-    return value.get<std::string>();
-}
-
 std::string read_name(const Json& value, const std::string& path) {
     std::string name = read_string(value, path);
     if (name.empty()) {
@@ -134,14 +57,7 @@ double read_number(const Json& value, const std::string& path) {
     if (value.is_number_integer()) {
         return exact_integer(value.get<std::int64_t>(), path);
     }
-    if (value.is_number_float()) {
-        const double number = value.get<double>();
-        if (!std::isfinite(number)) {
-            fail(path, "must be a finite number");
-        }
-        return number;
-    }
-    fail(path, "must be a number, " + got(value));
+    return json_fields::read_number(value, path);
 }
 
 // Exactly `count` numbers, e.g. a contact point.

@@ -3,6 +3,7 @@
 // (trajectory_reader.cpp). Internal to the trajectory reader.
 #pragma once
 
+#include "json_fields.h"
 #include "trajectory.h"
 
 #include <cstddef>
@@ -18,31 +19,23 @@ namespace impulse::harness::trajectory_fields {
 // needs so that it is written back the way it was read.
 using Json = nlohmann::ordered_json;
 
-// What the helpers throw; read_trajectory adds the file name and turns it
-// into an InputError, so the helpers need not carry the name around.
-struct Invalid {
-    std::string path;
-    std::string message;
-};
-
-[[noreturn]] void fail(const std::string& path, const std::string& message);
-
-// `got "abc"`, `got true`, `got an array`: what was found instead, short
-// enough for one line.
-std::string got(const Json& value);
-
-void require_object(const Json& value, const std::string& path);
-void require_array(const Json& value, const std::string& path);
-const Json& require_key(const Json& object, const std::string& path, const std::string& key);
-// Refuses keys outside `allowed`, naming the first one found.
-void reject_unknown_keys(const Json& object, const std::string& path,
-                         const std::vector<std::string>& allowed);
+// The typed reading every format shares (json_fields.h); read_trajectory
+// turns a FieldError into an InputError naming the file.
+using json_fields::fail;
+using json_fields::FieldError;
+using json_fields::got;
+using json_fields::read_string;
+using json_fields::reject_unknown_keys;
+using json_fields::require_array;
+using json_fields::require_key;
+using json_fields::require_object;
 
 std::string read_name(const Json& value, const std::string& path);
 // A JSON integer as a double, refused if a double cannot hold it exactly.
 double exact_integer(std::int64_t integer, const std::string& path);
 double exact_integer(std::uint64_t integer, const std::string& path);
-// Numbers come back with the bits they were written with.
+// Numbers come back with the bits they were written with; an integer a
+// double cannot hold exactly is refused.
 double read_number(const Json& value, const std::string& path);
 std::string read_lower_hex(const Json& value, const std::string& path, std::size_t digits);
 std::uint64_t hex_to_u64(const std::string& hex);

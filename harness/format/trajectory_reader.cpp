@@ -94,7 +94,7 @@ Trajectory read_trajectory(const std::string& text, const std::string& file) {
     require_within_trajectory_limit(size, file, "", "is too large to read");
     try {
         return read_validated(stream_trajectory(text, file, static_cast<std::size_t>(size.arrays)));
-    } catch (const Invalid& invalid) {
+    } catch (const FieldError& invalid) {
         throw InputError(file, invalid.path, invalid.message);
     }
 }

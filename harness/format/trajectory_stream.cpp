@@ -175,7 +175,7 @@ class TrajectoryStream {
         }
         try {
             return row_number(exact_integer(value, path_of_next_value()));
-        } catch (const Invalid& invalid) {
+        } catch (const FieldError& invalid) {
             note(document_.first_bad_value, invalid);
             return row_number(0.0);
         }
@@ -188,10 +188,10 @@ class TrajectoryStream {
     }
 
     void bad_value(const std::string& message) {
-        note(document_.first_bad_value, Invalid{path_of_next_value(), message});
+        note(document_.first_bad_value, FieldError{path_of_next_value(), message});
     }
 
-    void note(std::optional<FrameProblem>& problem, const Invalid& invalid) const {
+    void note(std::optional<FrameProblem>& problem, const FieldError& invalid) const {
         if (!problem) {
             problem = FrameProblem{document_.frames.size() - 1, invalid};
         }
@@ -219,7 +219,7 @@ class TrajectoryStream {
         case Kind::frames:
             new_row();
             note(document_.first_frame_not_array,
-                 Invalid{path_of_next_value(), "must be an array, " + got(value)});
+                 FieldError{path_of_next_value(), "must be an array, " + got(value)});
             break;
         case Kind::row:
             bad_value("must be a number, " + got(value));
@@ -264,7 +264,7 @@ class TrajectoryStream {
                 return Kind::row;
             }
             note(document_.first_frame_not_array,
-                 Invalid{path_of_next_value(), "must be an array, got an object"});
+                 FieldError{path_of_next_value(), "must be an array, got an object"});
             return Kind::skip;
         case Kind::row:
             bad_value(std::string("must be a number, got an ") + (is_object ? "object" : "array"));
@@ -317,7 +317,7 @@ class TrajectoryStream {
         const std::string path = path_of_next_value();
         try {
             document_.events.push_back(read_event(event_, path));
-        } catch (const Invalid& invalid) {
+        } catch (const FieldError& invalid) {
             document_.first_bad_event = invalid;
         }
         event_ = Json();

@@ -19,7 +19,7 @@ namespace impulse::harness::trajectory_fields {
 // shape before its values.
 struct FrameProblem {
     std::size_t frame = 0;
-    Invalid invalid;
+    FieldError invalid;
 };
 
 // The document as the stream leaves it.
@@ -32,7 +32,7 @@ struct StreamedDocument {
     std::optional<FrameProblem> first_bad_value;
     bool frames_streamed = false;
     std::vector<TrajectoryEvent> events; // up to the first that is wrong
-    std::optional<Invalid> first_bad_event;
+    std::optional<FieldError> first_bad_event;
     bool events_streamed = false;
 };
 
