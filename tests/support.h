@@ -44,7 +44,7 @@ inline bool close_relative(double value, double exact, double rel, double scale 
     return std::fabs(value - exact) <= rel * reference;
 }
 
-// Drop from contact gap h0 under gravity g (PHYSICS.md, written out by hand
+// Drop from contact gap h0 under gravity g (docs/physics.md, written out by hand
 // here so the tests do not check the harness with its own formulas):
 // t1 = sqrt(2 h0 / g), v1 = g t1, impact n + 1 at t1 + sum_{k=1..n} 2 e^k v1 / g,
 // rebound speed e^n v1, apex gap e^(2n) h0, all impacts over at t_inf.

@@ -1,4 +1,4 @@
-// Bad scenes through the real tool (issue 7, "Bad input"; DESIGN.md, "The
+// Bad scenes through the real tool (issue 7, "Bad input"; docs/design.md, "The
 // command-line tool"): every way a scene can be wrong ends in exit code 2 and
 // one line on stderr that names the file and the JSON path. Never a crash or
 // a stack trace, never a partial output file, never a golden touched, never a

@@ -1,5 +1,5 @@
 // Bad trajectories and goldens through the real tool (issue 7, "Bad input";
-// DESIGN.md, "The command-line tool"): every way one can be wrong ends in
+// docs/design.md, "The command-line tool"): every way one can be wrong ends in
 // exit code 2 and one line on stderr (or check's ERROR row) that names the
 // file and the JSON path, and no golden is touched (support/bad_input.h).
 //
@@ -190,7 +190,7 @@ TEST_CASE("A missing golden or a golden that is a folder is exit 2 and nothing i
 }
 
 TEST_CASE("A stale golden is exit 1 and named stale, not a broken input", "[unit][bad-input]") {
-    // DESIGN.md: a golden whose scene_sha256 no longer matches its scene is
+    // docs/design.md: a golden whose scene_sha256 no longer matches its scene is
     // reported as stale, not as a physics diff; README: exit 1.
     const std::string golden = golden_of_template("drop-box");
     const std::string sha = line_of(golden, "scene_sha256");

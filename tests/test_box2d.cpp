@@ -1,5 +1,5 @@
 // The Box2D adapter (harness/box2d_simulator.cpp): the fairness settings of
-// PHYSICS.md ("Box2D, the second reference") checked by their physical
+// docs/physics.md ("Box2D, the second reference") checked by their physical
 // consequences, the exact answers Box2D should reach within its own errors,
 // refused shapes, clamp warnings, collision events and determinism.
 #ifdef IMPULSE_WITH_BOX2D

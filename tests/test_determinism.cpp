@@ -1,4 +1,4 @@
-// Determinism rule 1 (DESIGN.md), the part one binary can check: the same scene
+// Determinism rule 1 (docs/design.md), the part one binary can check: the same scene
 // gives the same bits run after run and on several threads at once. (Across
 // compilers, -O levels, -march and aarch64: scripts/determinism-matrix.)
 #include "run.h"

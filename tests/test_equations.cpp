@@ -1,4 +1,4 @@
-// Each equation of PHYSICS.md against numbers derived by hand.
+// Each equation of docs/physics.md against numbers derived by hand.
 #include "restitution.h"
 #include "support.h"
 

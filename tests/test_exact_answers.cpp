@@ -1,4 +1,4 @@
-// The exact answers of PHYSICS.md through the whole simulation loop, for
+// The exact answers of docs/physics.md through the whole simulation loop, for
 // seeded random parameters, at time steps up to 1/30 s, to 1e-9 relative.
 #include "support.h"
 
@@ -95,7 +95,8 @@ TEST_CASE("Single-corner impact on static ground at many angles, masses and spee
                                   dynamic_body(box, mass, centre, angle, {0, -v})},
                                  {0, 0}, e, solver_with(Integrator::verlet));
 
-        // Exact answer (PHYSICS.md): j = (1 + e) v / (1/M + rx^2 / I), I = M (4a^2 + 4b^2) / 12.
+        // Exact answer (docs/physics.md): j = (1 + e) v / (1/M + rx^2 / I), I = M (4a^2 + 4b^2)
+        // / 12.
         const double inertia = mass * (4 * a * a + 4 * b * b) / 12.0;
         const double rx = lowest.x;
         const double j = (1.0 + e) * v / (1.0 / mass + rx * rx / inertia);

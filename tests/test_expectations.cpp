@@ -1,7 +1,7 @@
 // Expectations a scene declares (harness/gate/expectations.h): every kind on small
 // trajectories written by hand from the physics, passing as given and failing
 // when one value moves just beyond its tolerance; then the exact answers of
-// PHYSICS.md against real runs of the engine.
+// docs/physics.md against real runs of the engine.
 //
 // Every number here is derived in the comments beside it, never copied from a
 // run.
@@ -79,7 +79,7 @@ std::string with_expectations(const std::string& scene, const std::string& expec
 // ---------------------------------------------------------------- the hand-built scenes
 
 // A ball of mass 1, radius 0.5, released at rest with its lowest point 1 m
-// above static ground (h0 = 1), g = 8, e = 0.5. By PHYSICS.md, drop:
+// above static ground (h0 = 1), g = 8, e = 0.5. By docs/physics.md, drop:
 //   v1 = sqrt(2 g h0) = 4, t1 = v1 / g = 0.5;
 //   impact 2 at t1 + 2 e v1 / g = 0.5 + 0.5 = 1.0, impact 3 at 1.0 + 2 e^2 v1 / g = 1.25;
 //   rebound speeds e v1 = 2, e^2 v1 = 1, e^3 v1 = 0.5;
@@ -112,7 +112,7 @@ Trajectory drop_trajectory() {
 // A triangle with its centroid at the origin, vertices (1, -1), (0.5, 1),
 // (-1.5, 0): one lowest corner at rx = 1, 1 m below the centre. Mass 2,
 // inertia given as 1, centre at (0, 2) so the corner is h = 1 m above the
-// ground; moving sideways at vx0 = 1, g = 8, e = 0.5. PHYSICS.md, corner:
+// ground; moving sideways at vx0 = 1, g = 8, e = 0.5. docs/physics.md, corner:
 //   v = sqrt(2 g h) = 4, hit at t = v / g = 0.5 where the corner is at x = 0.5 + 1 = 1.5;
 //   j = (1 + e) v / (1/M + rx^2 / I) = 6 / 1.5 = 4;
 //   vy' = -v + j / M = -2, w' = rx j / I = 4 (the corner leaves at vy' + w' rx = 2 = e v).
@@ -138,7 +138,7 @@ Trajectory corner_trajectory() {
 
 // Discs of radius 0.5: a (mass 1) at the origin moving (4, 1), b (mass 3) at
 // (2, 0) moving (0, 1); no gravity, e = 0.5. They close at 4 m/s along
-// u = (1, 0) and touch at t = 0.25. PHYSICS.md, head-on with vA = 4, vB = 0:
+// u = (1, 0) and touch at t = 0.25. docs/physics.md, head-on with vA = 4, vB = 0:
 //   vA' = (4 - 3 * 0.5 * 4) / 4 = -0.5, vB' = (4 + 0.5 * 4) / 4 = 1.5,
 //   j = 1 * 3 * 1.5 * 4 / 4 = 4.5; across u both keep vy = 1.
 const std::string head_on_scene = R"({
@@ -702,7 +702,7 @@ TEST_CASE("expectations are evaluated in order, each result naming its path", "[
 
 namespace {
 
-// PHYSICS.md, drop: impact n at t1 + sum_{k=1..n-1} 2 e^k v1 / g.
+// docs/physics.md, drop: impact n at t1 + sum_{k=1..n-1} 2 e^k v1 / g.
 double drop_impact_time(double h0, double g, double e, int n) {
     const double v1 = std::sqrt(2.0 * g * h0);
     double t = v1 / g;

@@ -1,4 +1,4 @@
-// Goldens are never lost or torn (issue 7, "Goldens never lost"; DESIGN.md:
+// Goldens are never lost or torn (issue 7, "Goldens never lost"; docs/design.md:
 // regeneration "writes atomically (temporary file, then rename)"). A bless
 // killed at any moment leaves every golden with either its old bytes or its
 // new ones. The one thing a kill can leave besides is the writer's temporary

@@ -88,7 +88,7 @@ TEST_CASE("local stepping gives the seed's bits in every canonical scene with on
 TEST_CASE("a head-on collision in a crowd happens at the exact time with the exact exchange",
           "[unit][local]") {
     // Equal balls, radius r, centres d apart, closing at 2v, e = 1: they touch
-    // at t = (d - 2r) / (2v) and swap velocities (PHYSICS.md, head-on).
+    // at t = (d - 2r) / (2v) and swap velocities (docs/physics.md, head-on).
     for (const TimeOfImpactMethod toi :
          {TimeOfImpactMethod::bisection, TimeOfImpactMethod::secant}) {
         const double r = 0.25;

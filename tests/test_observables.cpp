@@ -63,7 +63,7 @@ std::vector<Frame> frames_of(double dt, double end, double y,
     return frames;
 }
 
-// The drop of PHYSICS.md with numbers exact in binary: g = 8, e = 0.5, a disc
+// The drop of docs/physics.md with numbers exact in binary: g = 8, e = 0.5, a disc
 // of radius 0.5 whose centre is at 2.5 over ground whose top is y = 0, so the
 // gap h0 = 2 and the centre's height at contact y0 - h0 = 0.5. Then v1 =
 // sqrt(2 g h0) = 4 sqrt(2), t1 = v1 / g = sqrt(2) / 2, impact 2 at t1 + 2 e v1 /
@@ -281,7 +281,7 @@ TEST_CASE("post-impact velocity: both runs read at the same frame time", "[obser
                            "1 s)") == 0);
 }
 
-TEST_CASE("post-impact velocity of a corner impact: PHYSICS.md's formula", "[observables]") {
+TEST_CASE("post-impact velocity of a corner impact: docs/physics.md's formula", "[observables]") {
     // No gravity: a unit square turned by atan(3/4) (cos 0.8, sin 0.6) falls at
     // 2 m/s onto ground whose top is y = 0. Its corners sit at (-0.1, -0.7),
     // (0.7, -0.1), (0.1, 0.7), (-0.7, 0.1) from its centre: the lowest has
@@ -319,7 +319,7 @@ TEST_CASE("post-impact velocity of a corner impact: PHYSICS.md's formula", "[obs
     CHECK(rows[2].within); // exactly 0.25 apart: at the boundary
 }
 
-TEST_CASE("post-impact velocity of a head-on pair: PHYSICS.md's 1D answer", "[observables]") {
+TEST_CASE("post-impact velocity of a head-on pair: docs/physics.md's 1D answer", "[observables]") {
     // Free space, e = 0.5, discs of 3 kg at 2 m/s and 1 kg at -2 m/s along x:
     //   vA' = (3 x 2 + 1 x -2 - 1 x 0.5 x 4) / 4 = 0.5
     //   vB' = (3 x 2 + 1 x -2 + 3 x 0.5 x 4) / 4 = 2.5

@@ -1,4 +1,4 @@
-// Conservation laws over many seeded random collisions (PHYSICS.md, exact answers).
+// Conservation laws over many seeded random collisions (docs/physics.md, exact answers).
 #include "restitution.h"
 #include "support.h"
 #include "trig.h"

@@ -1,4 +1,4 @@
-// Scene loading, the bodies and their shapes (DESIGN.md, "Scene format"): the
+// Scene loading, the bodies and their shapes (docs/design.md, "Scene format"): the
 // derived mass properties, polygon recentring, overlaps at t = 0, and one case
 // per rejected body, each checked for the file name, the exact JSON path and
 // the reason (support/scene_text.h).

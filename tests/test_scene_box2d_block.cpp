@@ -1,4 +1,4 @@
-// Scene loading, the "box2d" block (DESIGN.md, "Scene format"): its settings
+// Scene loading, the "box2d" block (docs/design.md, "Scene format"): its settings
 // and observables read with their paths, and one case per rejected input, each
 // checked for the file name, the exact JSON path and the reason
 // (support/scene_text.h).

@@ -1,4 +1,4 @@
-// Scene loading, the tolerance and the expectations (DESIGN.md, "Scene
+// Scene loading, the tolerance and the expectations (docs/design.md, "Scene
 // format"): every kind read with its values, and one case per rejected input,
 // each checked for the file name, the exact JSON path and the reason
 // (support/scene_text.h).

@@ -1,4 +1,4 @@
-// Scene loading, the top level (DESIGN.md, "Scene format"): every documented
+// Scene loading, the top level (docs/design.md, "Scene format"): every documented
 // default, the fingerprint, the file, the text, the top-level keys, the solver
 // block and stepping, each rejected input checked for the file name, the exact
 // JSON path and the reason (support/scene_text.h).

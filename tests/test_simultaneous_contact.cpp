@@ -107,7 +107,7 @@ TEST_CASE("A box landing flat stays flat, bitwise, under simultaneous contact",
     // Both bottom corners touch at once and the problem is symmetric under
     // swapping them, so the two impulses are equal bit for bit, their torques
     // are x and -x, and omega stays exactly 0: the box bounces like a point
-    // mass, on the exact drop answers (PHYSICS.md, "Exact answers").
+    // mass, on the exact drop answers (docs/physics.md, "Exact answers").
     const Drop drop{1.0, 9.81, 0.8};
     const double dt = 1.0 / 60.0;
     const int impacts = 5;

@@ -259,7 +259,7 @@ TEST_CASE("the stress checkers catch a violation made by hand", "[unit][stress]"
             std::vector<BodyState> states = states_of(scene);
             monitor.observe(0.0, states);
             monitor.observe(event_between("a", "b", 1.5, 2.0));
-            // PHYSICS.md, e = 1, masses 2 and 1 at +1 and -1: -1/3 and 5/3.
+            // docs/physics.md, e = 1, masses 2 and 1 at +1 and -1: -1/3 and 5/3.
             states[0].velocity = {-1.0 / 3.0 + error, 0.0};
             states[1].velocity = {5.0 / 3.0, 0.0};
             monitor.observe(3.0, states);

@@ -1,5 +1,5 @@
 // The time-of-impact searches (docs/engine.md, "The secant search"): the secant
-// search gives the exact answers of PHYSICS.md through the whole loop as the
+// search gives the exact answers of docs/physics.md through the whole loop as the
 // seed's bisection does, in fewer iterations, and fails the same way; the
 // bisection's results are unchanged to the bit.
 #include "support.h"
@@ -129,7 +129,7 @@ Tally drops(TimeOfImpactMethod toi) {
     return tally;
 }
 
-// Seeded random single-corner impacts on static ground (PHYSICS.md):
+// Seeded random single-corner impacts on static ground (docs/physics.md):
 // j = (1 + e) v / (1/M + rx^2 / I), vy' = -v + j / M, w' = rx j / I, vx unchanged,
 // with I = M (4a^2 + 4b^2) / 12. Half the trials fall under gravity (verlet is
 // exact for it), so that s(t) is a parabola, not a line.

@@ -1,7 +1,7 @@
 // `impulse box2d [SCENE...]`: the second reference. Runs each scene in the
 // impulse engine and in Box2D with friction off (box2d_simulator.h) and
 // compares the observables the scene's "box2d" block names (observables.h),
-// each against the exact answer of PHYSICS.md where there is one.
+// each against the exact answer of docs/physics.md where there is one.
 #include "atomic_file.h"
 #include "box2d_simulator.h"
 #include "cli.h"
@@ -41,7 +41,7 @@ restitution equal to the scene's e, restitution threshold 0, no sleeping, no
 damping, polygons shrunk by Box2D's skin) and compares the observables the
 scene's "box2d" block names: impact times, apex heights and ratios,
 post-impact velocities, the restitution residual, momentum, angular momentum
-and energy. Each row shows the exact answer of PHYSICS.md where there is one,
+and energy. Each row shows the exact answer of docs/physics.md where there is one,
 both runs' values and errors, and whether |Box2D - impulse| is within the
 observable's atol + rtol |impulse|. With no SCENE, every canonical scene in
 ROOT/harness/scenes/. A SCENE is a name or a path.
@@ -132,7 +132,7 @@ void write_table(std::ostream& out, const ReferenceComparison& c) {
 }
 
 constexpr const char* legend =
-    R"(What the differences mean (PHYSICS.md, "Box2D, the second reference"):
+    R"(What the differences mean (docs/physics.md, "Box2D, the second reference"):
   timing       Box2D finds a contact only once the bodies overlap at the end of a
                step and resolves it in the next step: its impact times lag the exact
                ones by one to two steps, its bounce starts from inside the ground at

@@ -11,7 +11,7 @@
 
 namespace impulse::harness::cli {
 
-// Exit codes for every verb (DESIGN.md).
+// Exit codes for every verb (docs/design.md).
 inline constexpr int exit_ok = 0;
 inline constexpr int exit_failed = 1;    // a comparison or an expectation failed
 inline constexpr int exit_bad_input = 2; // the input or the set-up was wrong

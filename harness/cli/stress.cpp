@@ -34,8 +34,8 @@ frame the invariants that apply, keeping the worst value of each:
   momentum drift         free collisions: within 1e-12 of the sum of |m v|
   energy gain            e <= 1: never more than 1e-12 of the energy's terms
   energy drift           e = 1: within 1e-12 + 32 epsilon per collision
-  drop ladder            impact times and rebound speeds against PHYSICS.md
-  head-on velocities     against PHYSICS.md's 1D formula, within 1e-12
+  drop ladder            impact times and rebound speeds against docs/physics.md
+  head-on velocities     against docs/physics.md's 1D formula, within 1e-12
 
 A case whose numbers would tunnel without ccd must be refused before it runs;
 its row shows the refusal. Each case's wall time is shown, never judged.

@@ -1,4 +1,4 @@
-// Doubles as JSON text that reads back to the identical bits (DESIGN.md,
+// Doubles as JSON text that reads back to the identical bits (docs/design.md,
 // "Doubles are written in shortest round-trip form").
 #pragma once
 

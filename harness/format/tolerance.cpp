@@ -1,5 +1,5 @@
 // Per-channel tolerances: the ULP metric, the pass rule, and the command-line
-// form of tolerances (DESIGN.md, "Comparing and the golden workflow").
+// form of tolerances (docs/design.md, "Comparing and the golden workflow").
 #include "tolerance.h"
 
 #include "trajectory.h"

@@ -1,4 +1,4 @@
-// Tolerances for comparing a new trajectory with a golden (DESIGN.md,
+// Tolerances for comparing a new trajectory with a golden (docs/design.md,
 // "Comparing and the golden workflow"). There are no silent defaults: a
 // channel without a tolerance cannot be compared in tolerance mode.
 #pragma once

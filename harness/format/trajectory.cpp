@@ -1,4 +1,4 @@
-// Writing impulse/trajectory@1 (DESIGN.md, "Trajectory and golden format"),
+// Writing impulse/trajectory@1 (docs/design.md, "Trajectory and golden format"),
 // and its digest. Goldens are compared bit for bit, so the writer's layout is
 // fixed. Reading is in trajectory_reader.cpp.
 #include "trajectory.h"

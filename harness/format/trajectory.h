@@ -1,4 +1,4 @@
-// A recorded run in the impulse/trajectory@1 format (DESIGN.md): frames of
+// A recorded run in the impulse/trajectory@1 format (docs/design.md): frames of
 // every dynamic body's state at t = 0 and after every full step, and every
 // resolved collision.
 #pragma once
@@ -41,7 +41,7 @@ std::uint64_t digest_of(const Trajectory& trajectory);
 // 16 lowercase hex digits.
 std::string digest_hex(std::uint64_t digest);
 
-// Serialises in the fixed key order of DESIGN.md, one frame per line, doubles
+// Serialises in the fixed key order of docs/design.md, one frame per line, doubles
 // in shortest round-trip form (-0.0 kept as "-0.0").
 std::string write_trajectory(const Trajectory& trajectory);
 

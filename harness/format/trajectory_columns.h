@@ -14,11 +14,11 @@
 namespace impulse::harness {
 
 // A dynamic body's six channels, in column order: column "NAME.x" and so on
-// (DESIGN.md, trajectory format). Spelled here once.
+// (docs/design.md, trajectory format). Spelled here once.
 inline constexpr std::array<const char*, 6> body_channel_suffixes = {".x",  ".y",  ".angle",
                                                                      ".vx", ".vy", ".omega"};
 
-// Where one body's six values sit in a frame (DESIGN.md, trajectory format).
+// Where one body's six values sit in a frame (docs/design.md, trajectory format).
 struct BodyColumns {
     std::size_t x = 0, y = 0, angle = 0, vx = 0, vy = 0, omega = 0;
 };

@@ -1,4 +1,4 @@
-// Reading impulse/trajectory@1 (DESIGN.md, "Trajectory and golden format"):
+// Reading impulse/trajectory@1 (docs/design.md, "Trajectory and golden format"):
 // strict, so a golden that does not parse cleanly is an input error naming the
 // file and JSON path, never a crash; and bounded, so a file is refused before
 // it is parsed when holding it would exceed the trajectory limit

@@ -1,4 +1,4 @@
-// Comparing a new trajectory with a golden (DESIGN.md, "Comparing and the
+// Comparing a new trajectory with a golden (docs/design.md, "Comparing and the
 // golden workflow"): first the shape (scene, columns, frame and event counts,
 // event bodies), then every value that both trajectories have.
 #include "compare.h"

@@ -26,7 +26,7 @@ double scale_of(const Totals& t, const std::string& quantity) {
 
 } // namespace
 
-// PHYSICS.md: frictionless contact in free space conserves momentum and
+// docs/physics.md: frictionless contact in free space conserves momentum and
 // angular momentum; with e = 1, energy. Every frame is compared with frame 0
 // and the frame where the quantity strays furthest is reported.
 void check_conserved(const Scene& scene, const Trajectory& trajectory, Checks& checks) {
@@ -68,7 +68,7 @@ void check_conserved(const Scene& scene, const Trajectory& trajectory, Checks& c
     }
 }
 
-// PHYSICS.md: "with e < 1 energy never increases". One result: the largest
+// docs/physics.md: "with e < 1 energy never increases". One result: the largest
 // rise from one frame to the next, judged against the energy's scale at t = 0.
 void check_energy_non_increasing(const Scene& scene, const Trajectory& trajectory, Checks& checks) {
     const std::optional<std::vector<Mass>> masses = masses_of(scene, trajectory, checks);

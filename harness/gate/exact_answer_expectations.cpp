@@ -1,4 +1,4 @@
-// The expectations PHYSICS.md answers exactly: a drop's ladder, a corner
+// The expectations docs/physics.md answers exactly: a drop's ladder, a corner
 // impact, a head-on collision. The exact answers are computed from the
 // scene's own parameters ("Exact answers for checking"); the loader has
 // already refused scenes that break their preconditions.

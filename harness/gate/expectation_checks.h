@@ -141,7 +141,7 @@ std::optional<std::vector<Mass>> masses_of(const Scene& scene, const Trajectory&
 
 // ---------------------------------------------------------------- each family of kinds
 
-// PHYSICS.md's exact answers (exact_answer_expectations.cpp).
+// docs/physics.md's exact answers (exact_answer_expectations.cpp).
 void check_drop(const Scene& scene, const Trajectory& trajectory, Checks& checks);
 void check_corner_impact(const Scene& scene, const Trajectory& trajectory, Checks& checks);
 void check_head_on(const Scene& scene, const Trajectory& trajectory, Checks& checks);

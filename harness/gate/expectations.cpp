@@ -1,4 +1,4 @@
-// Checking a run against the answers its scene declares (DESIGN.md: "A scene
+// Checking a run against the answers its scene declares (docs/design.md: "A scene
 // may declare expectations that every run checks"): each expectation's kind
 // sent to its family's check (expectation_checks.h).
 //

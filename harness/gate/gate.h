@@ -1,4 +1,4 @@
-// The golden gate (DESIGN.md, "Comparing and the golden workflow"): canonical
+// The golden gate (docs/design.md, "Comparing and the golden workflow"): canonical
 // scenes are simulated again and compared with the goldens blessed earlier.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The exact answers of PHYSICS.md and when they apply (see exact_answers.h).
+// The exact answers of docs/physics.md and when they apply (see exact_answers.h).
 #include "exact_answers.h"
 
 #include "manifold.h"

@@ -1,4 +1,4 @@
-// The exact answers of PHYSICS.md ("Exact answers for checking"), computed
+// The exact answers of docs/physics.md ("Exact answers for checking"), computed
 // from a scene's own parameters, the conditions under which each applies, and
 // the quantities a trajectory is read for to compare with them.
 //
@@ -23,7 +23,7 @@ namespace impulse::harness {
 // ---------------------------------------------------------------- the scene at t = 0
 
 // Below this height difference two corners count as level: a landing would
-// touch both (PHYSICS.md's corner formula is for a single corner).
+// touch both (docs/physics.md's corner formula is for a single corner).
 inline constexpr double level_corners = 1e-9;
 // Parallel within rounding: |cross| <= 1e-9 for unit vectors.
 inline constexpr double parallel_tolerance = 1e-9;
@@ -59,18 +59,18 @@ struct Refusal {
     std::string message; // one sentence, starting with `formula`
 };
 
-// PHYSICS.md, drop: released at rest above static ground under gravity
+// docs/physics.md, drop: released at rest above static ground under gravity
 // (0, -g), g > 0, bouncing without rotation.
 std::optional<Refusal> drop_refusal(const Scene& scene, const SceneBody& body,
                                     const std::string& formula);
-// PHYSICS.md, single-corner impact: a polygon free to rotate, not spinning,
+// docs/physics.md, single-corner impact: a polygon free to rotate, not spinning,
 // falling onto static ground on exactly one corner.
 std::optional<Refusal> corner_impact_refusal(const Scene& scene, const SceneBody& body,
                                              const std::string& formula);
-// PHYSICS.md, head-on: two distinct bodies, 1D, no rotation, free space.
+// docs/physics.md, head-on: two distinct bodies, 1D, no rotation, free space.
 std::optional<Refusal> head_on_refusal(const Scene& scene, const SceneBody& a, const SceneBody& b,
                                        const std::string& formula);
-// PHYSICS.md: frictionless contact in free space conserves momentum and
+// docs/physics.md: frictionless contact in free space conserves momentum and
 // angular momentum; with e = 1, energy. `quantity`: "momentum",
 // "angular_momentum" or "energy". Empty when the scene conserves it.
 std::optional<std::string> conservation_refusal(const Scene& scene, const std::string& quantity);
@@ -91,7 +91,7 @@ inline Exact plain(double value) {
     return {value, std::abs(value)};
 }
 
-// PHYSICS.md, drop: released at rest a gap h0 above the ground, first impact
+// docs/physics.md, drop: released at rest a gap h0 above the ground, first impact
 // at t1 = sqrt(2 h0 / g) with speed v1 = g t1 = sqrt(2 g h0); each bounce
 // leaves at e times the speed it came in with, so impact n + 1 comes a flight
 // of 2 e^n v1 / g after impact n, and rises to e^(2n) h0.
@@ -115,7 +115,7 @@ struct DropLadder {
 // The drop of `body` (drop_refusal must be empty); empty without static ground.
 std::optional<DropLadder> drop_ladder(const Scene& scene, const SceneBody& body);
 
-// PHYSICS.md, single-corner impact on static ground (n = (0, 1)), for a body
+// docs/physics.md, single-corner impact on static ground (n = (0, 1)), for a body
 // not spinning: the lowest corner falls the gap h, meets the ground at speed v,
 // and the impulse j = (1 + e) v / (1/M + rx^2 / I) at horizontal offset rx sets
 // vy' = -v + j / M and w' = rx j / I; vx is untouched.
@@ -133,7 +133,7 @@ struct CornerImpact {
 // `h`: the gap to the ground at t = 0.
 CornerImpact corner_impact(const Scene& scene, const SceneBody& body, double h);
 
-// PHYSICS.md, head-on (1D, no rotation): along the unit vector u from A's
+// docs/physics.md, head-on (1D, no rotation): along the unit vector u from A's
 // centre to B's, momentum is exact and restitution sets the closing speed:
 //   vA' = (MA vA + MB vB - MB e (vA - vB)) / (MA + MB)
 //   vB' = (MA vA + MB vB + MA e (vA - vB)) / (MA + MB)

@@ -13,7 +13,7 @@ namespace impulse::harness {
 
 namespace {
 
-// The double nearest pi, written out: no library trigonometry (DESIGN.md,
+// The double nearest pi, written out: no library trigonometry (docs/design.md,
 // determinism rule 3), and M_PI is not standard C++.
 constexpr double pi = 3.141592653589793;
 

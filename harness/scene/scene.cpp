@@ -1,4 +1,4 @@
-// Loading impulse/scene@1 (DESIGN.md, "Scene format"): the file, its
+// Loading impulse/scene@1 (docs/design.md, "Scene format"): the file, its
 // fingerprint, and the names of the solver enums. Each section of the file is
 // read by its own scene_*.cpp (scene_reading.h). Every problem becomes one
 // InputError naming the file and the JSON path of the first thing wrong, so

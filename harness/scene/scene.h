@@ -1,4 +1,4 @@
-// A scene in the impulse/scene@1 format (DESIGN.md), loaded and validated.
+// A scene in the impulse/scene@1 format (docs/design.md), loaded and validated.
 // Every default is filled in here, so nothing downstream guesses.
 #pragma once
 
@@ -29,15 +29,15 @@ struct SceneBody {
     bool rotation = true; // false: infinite inertia
 };
 
-// An answer the scene declares and every run checks (DESIGN.md: "A scene may
+// An answer the scene declares and every run checks (docs/design.md: "A scene may
 // declare expectations that every run checks"). The exact ones are computed
-// from the scene's own parameters by the formulas of PHYSICS.md, so they stay
+// from the scene's own parameters by the formulas of docs/physics.md, so they stay
 // right when a parameter changes; the literal ones carry hand-derived numbers.
 struct Expectation {
     enum class Kind {
-        drop,                  // PHYSICS.md drop: impact times, rebound speeds, apex ladder
-        corner_impact,         // PHYSICS.md single-corner impact on static ground
-        head_on,               // PHYSICS.md 1D head-on collision of two free bodies
+        drop,                  // docs/physics.md drop: impact times, rebound speeds, apex ladder
+        corner_impact,         // docs/physics.md single-corner impact on static ground
+        head_on,               // docs/physics.md 1D head-on collision of two free bodies
         conserved,             // linear momentum, angular momentum about the origin, energy
         energy_non_increasing, // e < 1: energy never grows from frame to frame
         momentum_balance,      // momentum changes only by the static bodies' impulses
@@ -62,7 +62,7 @@ struct Expectation {
 
 // What `impulse box2d` compares and how Box2D is run (the scene's "box2d"
 // block). Observables survive Box2D's differences (skin, iterations, position
-// correction, single precision): PHYSICS.md, "Box2D, the second reference".
+// correction, single precision): docs/physics.md, "Box2D, the second reference".
 struct Box2dObservable {
     enum class Kind {
         impact_times,         // times of the body's first `count` impacts (within a step)

@@ -38,7 +38,7 @@ constexpr long long max_box2d_impacts = 10000;
 constexpr long long max_box2d_setting = 1000;
 
 // One entry of box2d.observables (scene.h, Box2dObservable). An observable
-// whose meaning rests on a formula of PHYSICS.md is held to that formula's
+// whose meaning rests on a formula of docs/physics.md is held to that formula's
 // preconditions, as the expectations are: an apex measured above the contact
 // height y0 - h0 needs a body falling straight onto static ground.
 Box2dObservable read_box2d_observable(const Node& node, const Scene& scene) {

@@ -20,7 +20,7 @@ constexpr long long max_ulp = 9007199254740992;
 ChannelTolerance read_channel_tolerance(const Node& node) {
     require_object(node);
     reject_unknown_keys(node, {"atol", "rtol", "ulp"});
-    // No silent defaults (DESIGN.md): a channel named must say how close is close.
+    // No silent defaults (docs/design.md): a channel named must say how close is close.
     if (!node.has("atol") && !node.has("rtol") && !node.has("ulp")) {
         node.fail("must give at least one of atol, rtol or ulp; a tolerance has no defaults");
     }
@@ -37,7 +37,7 @@ ChannelTolerance read_channel_tolerance(const Node& node) {
     return tolerance;
 }
 
-// PHYSICS.md, drop: "no rotation", released at rest.
+// docs/physics.md, drop: "no rotation", released at rest.
 void validate_drop(const Node& node, const Scene& scene, Expectation& expectation) {
     const std::string formula = "the drop formula";
     const Node body_node = required_member(node, "body");
@@ -47,7 +47,7 @@ void validate_drop(const Node& node, const Scene& scene, Expectation& expectatio
     reject_refusal(drop_refusal(scene, scene.bodies[body], formula), node, body_node);
 }
 
-// PHYSICS.md, single-corner impact: a rotating polygon, not spinning, falling
+// docs/physics.md, single-corner impact: a rotating polygon, not spinning, falling
 // onto static ground on exactly one corner.
 void validate_corner_impact(const Node& node, const Scene& scene, Expectation& expectation) {
     const std::string formula = "the corner-impact formula";
@@ -57,7 +57,7 @@ void validate_corner_impact(const Node& node, const Scene& scene, Expectation& e
     reject_refusal(corner_impact_refusal(scene, scene.bodies[body], formula), node, body_node);
 }
 
-// PHYSICS.md, head-on: 1D, no rotation, free space.
+// docs/physics.md, head-on: 1D, no rotation, free space.
 void validate_head_on(const Node& node, const Scene& scene, Expectation& expectation) {
     const std::string formula = "the head-on formula";
     const Node a_node = required_member(node, "a");
@@ -71,7 +71,7 @@ void validate_head_on(const Node& node, const Scene& scene, Expectation& expecta
 
 const std::vector<std::string> conserved_quantities = {"momentum", "angular_momentum", "energy"};
 
-// PHYSICS.md: "Frictionless contact in free space conserves linear momentum
+// docs/physics.md: "Frictionless contact in free space conserves linear momentum
 // exactly and angular momentum about any fixed point; with e = 1 it conserves
 // kinetic energy".
 void require_conserved(const Node& node, const Scene& scene, const std::string& quantity) {
@@ -163,7 +163,7 @@ void validate_state(const Node& node, const Scene& scene, Expectation& expectati
                            .name;
     const Node t = required_member(node, "t");
     expectation.t = read_non_negative(t);
-    // Frames are recorded at k dt (DESIGN.md): any other time has no frame.
+    // Frames are recorded at k dt (docs/design.md): any other time has no frame.
     const double k = std::round(expectation.t / scene.dt);
     if (std::abs(expectation.t - k * scene.dt) > 1e-9 * scene.dt ||
         k > static_cast<double>(step_count(scene))) {

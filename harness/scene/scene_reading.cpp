@@ -63,7 +63,7 @@ Node required_member(const Node& object, const std::string& key) {
                 json_member_path(object.path(), key));
 }
 
-// Typos must not pass silently (DESIGN.md): every key must be one the format knows.
+// Typos must not pass silently (docs/design.md): every key must be one the format knows.
 void reject_unknown_keys(const Node& object, const std::vector<std::string>& known) {
     json_fields::reject_unknown_keys(object.json(), object.path(), known);
 }

@@ -13,7 +13,7 @@ namespace {
 
 constexpr int min_polygon_vertices = 3;
 // A polygon whose centroid is further than this fraction of its size from the
-// origin is recentred (DESIGN.md: "centroid at the origin or recentred").
+// origin is recentred (docs/design.md: "centroid at the origin or recentred").
 constexpr double centroid_tolerance = 1e-9;
 
 Shape read_box(const Node& node) {

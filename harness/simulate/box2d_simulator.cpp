@@ -1,5 +1,5 @@
 // Box2D 2.4.1 behind the harness's Simulator interface, set up for a fair
-// comparison (PHYSICS.md, "Box2D, the second reference").
+// comparison (docs/physics.md, "Box2D, the second reference").
 //
 // Box2D is single precision: every number crosses the boundary through an
 // explicit float conversion, and the settings say "precision": "single", so a
@@ -22,7 +22,7 @@ namespace impulse::harness {
 
 namespace {
 
-// Box2D's skin: every polygon is rounded by this much (PHYSICS.md).
+// Box2D's skin: every polygon is rounded by this much (docs/physics.md).
 constexpr double skin = static_cast<double>(b2_polygonRadius);
 
 b2Vec2 to_b2(Vec2 v) {
@@ -102,7 +102,7 @@ void check_shrunk(const Polygon& polygon, const std::vector<Vec2>& shrunk, const
 }
 
 // The Box2D polygon whose skin surface (b2_polygonRadius outside it) is the
-// scene's true surface (PHYSICS.md: "correct heights for it").
+// scene's true surface (docs/physics.md: "correct heights for it").
 b2PolygonShape box2d_polygon(const Polygon& polygon, const Scene& scene, std::size_t index) {
     if (polygon.count > b2_maxPolygonVertices) {
         throw InputError(scene.file, shape_path(index),
@@ -175,7 +175,7 @@ std::vector<Box2dShape> box2d_shapes(const Scene& scene) {
 
 // Box2D silently scales down a velocity that would move a body more than
 // b2_maxTranslation, or turn it more than b2_maxRotation, in one step
-// (PHYSICS.md). The largest speed a body can reach is estimated as
+// (docs/physics.md). The largest speed a body can reach is estimated as
 // |v0| + |g| duration (free fall; collisions with e <= 1 do not add speed).
 void warn_about_clamps(const Scene& scene, std::vector<std::string>& warnings) {
     const double dt_sub = scene.dt / static_cast<double>(scene.box2d.substeps);
@@ -399,10 +399,10 @@ class Box2dSimulator final : public Simulator {
             def.type = b2_dynamicBody;
             def.linearVelocity = to_b2(spec.velocity);
             def.angularVelocity = static_cast<float>(spec.angular_velocity);
-            def.linearDamping = 0.0f; // PHYSICS.md: no damping
+            def.linearDamping = 0.0f; // docs/physics.md: no damping
             def.angularDamping = 0.0f;
             def.fixedRotation = !spec.rotation;
-            def.allowSleep = false; // PHYSICS.md: sleeping off
+            def.allowSleep = false; // docs/physics.md: sleeping off
         }
         b2Body* body = world_.CreateBody(&def);
         const b2FixtureDef fixture = fixture_def(shape);
@@ -416,7 +416,7 @@ class Box2dSimulator final : public Simulator {
     b2FixtureDef fixture_def(const Box2dShape& shape) const {
         b2FixtureDef def;
         def.shape = &shape.get();
-        def.friction = 0.0f; // PHYSICS.md: friction 0 on every fixture
+        def.friction = 0.0f; // docs/physics.md: friction 0 on every fixture
         // Box2D mixes restitutions with max; every fixture has the scene's e.
         def.restitution = static_cast<float>(scene_.restitution);
         // The default (1 m/s) silently turns slower bounces into e = 0.

@@ -1,5 +1,5 @@
 // Box2D 2.4.1 behind the harness's Simulator interface, set up for a fair
-// comparison (PHYSICS.md, "Box2D, the second reference"): friction 0,
+// comparison (docs/physics.md, "Box2D, the second reference"): friction 0,
 // restitution e, restitution threshold 0, no sleeping, no damping, polygons
 // shrunk by the skin so the skin surface is the true surface, continuous
 // collision only where the scene asks for it.

@@ -1,5 +1,5 @@
 // The one small interface through which the harness drives a simulator
-// (DESIGN.md, Layout): build from a scene, step, read state and collisions.
+// (docs/design.md, Layout): build from a scene, step, read state and collisions.
 // The impulse engine is one implementation; Box2D and a user's engine can be others.
 #pragma once
 

@@ -1,8 +1,8 @@
-// The observables `impulse box2d` compares (PHYSICS.md, "Box2D, the second
+// The observables `impulse box2d` compares (docs/physics.md, "Box2D, the second
 // reference"): quantities that survive Box2D's differences from the exact
 // model (its skin, iteration counts, position correction, single precision,
 // impacts resolved at the ends of steps), read the same way from any
-// simulator's trajectory of a scene. Where PHYSICS.md's formulas give an exact
+// simulator's trajectory of a scene. Where docs/physics.md's formulas give an exact
 // answer for the scene, it is computed from the scene's own parameters
 // (exact_answers.h), so each run's error can be told apart from their
 // difference.
@@ -249,7 +249,7 @@ void apex_observable(const Scene& scene, const Box2dObservable& o, const Run (&r
 // ---------------------------------------------------------------- post-impact velocity
 
 // The exact state after impact n at time t (> the impact), where a formula of
-// PHYSICS.md gives it: the drop (every impact), the single-corner impact and
+// docs/physics.md gives it: the drop (every impact), the single-corner impact and
 // the head-on collision of two free bodies (the first impact).
 std::optional<Motion> exact_after(const Scene& scene, const SceneBody& body, int n, double t) {
     const double g = gravity_magnitude(scene);
@@ -369,7 +369,7 @@ void post_impact_velocity(const Scene& scene, const Box2dObservable& o, const Ru
 
 // ---------------------------------------------------------------- restitution residual
 
-// Newton's law of restitution (PHYSICS.md, Eq. 3) per event: vn_after =
+// Newton's law of restitution (docs/physics.md, Eq. 3) per event: vn_after =
 // -e vn_before, so (vn_after + e vn_before) / |vn_before| is 0 in the exact
 // model. The event with the largest magnitude is reported, sign kept.
 Reading largest_residual(const Scene& scene, const Box2dObservable& o, const Run& run) {

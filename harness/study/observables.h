@@ -1,4 +1,4 @@
-// The observables `impulse box2d` compares (PHYSICS.md): quantities that
+// The observables `impulse box2d` compares (docs/physics.md): quantities that
 // survive Box2D's differences from the exact model, computed the same way
 // from any simulator's trajectory of a scene.
 #pragma once

@@ -49,7 +49,7 @@ struct SideRule {
     Vec2 axis;
 };
 
-// PHYSICS.md's drop of `body`, released at rest above static ground: its
+// docs/physics.md's drop of `body`, released at rest above static ground: its
 // collisions, exactly `impacts` of them, against the ladder (impact times and
 // rebound speeds).
 struct DropCheck {
@@ -57,7 +57,7 @@ struct DropCheck {
     int impacts = 0;
 };
 
-// PHYSICS.md's 1D head-on collision of bodies a and b along x.
+// docs/physics.md's 1D head-on collision of bodies a and b along x.
 struct HeadOnCheck {
     int a = 0;
     int b = 0;

@@ -81,7 +81,7 @@ double drop_duration(double h0, double e, int n) {
 }
 
 // A disc of radius r dropped from 1 m above static ground (its top at y = 0),
-// everything shifted by `offset`: the drop PHYSICS.md's ladder answers.
+// everything shifted by `offset`: the drop docs/physics.md's ladder answers.
 StressCase drop_case(const std::string& name, const std::string& description, double r, double e,
                      double dt, Vec2 offset, int impacts, double duration = 0.0) {
     Setting s;

@@ -1,4 +1,4 @@
-// PHYSICS.md's exact answers as stress rows (stress_exact_answers.h).
+// docs/physics.md's exact answers as stress rows (stress_exact_answers.h).
 #include "stress_exact_answers.h"
 
 #include "exact_answers.h"
@@ -115,7 +115,7 @@ std::vector<StressRow> head_on_rows(const Scene& scene, const HeadOnCheck& check
         std::max(relative(std::abs(va - exact.va_after.value), exact.va_after.scale),
                  relative(std::abs(vb - exact.vb_after.value), exact.vb_after.scale));
     return {judged(title, error, stress_relative_slack, Bound::at_most,
-                   "final velocities along the line of centres, PHYSICS.md")};
+                   "final velocities along the line of centres, docs/physics.md")};
 }
 
 } // namespace impulse::harness

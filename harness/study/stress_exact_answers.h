@@ -1,4 +1,4 @@
-// PHYSICS.md's exact answers as stress rows: a case's drop against the
+// docs/physics.md's exact answers as stress rows: a case's drop against the
 // ladder (impact times, rebound speeds) and its head-on collision against
 // the 1D formulas, each with the bound its rounding allows and why.
 #pragma once

@@ -1,6 +1,6 @@
 // The stress matrix's invariants (stress.h, StressMonitor): each measured at
 // every frame, its worst value kept, and judged against its bound and why.
-// The drop and head-on rows are PHYSICS.md's exact answers
+// The drop and head-on rows are docs/physics.md's exact answers
 // (stress_exact_answers.cpp).
 #include "manifold.h"
 #include "stress.h"
