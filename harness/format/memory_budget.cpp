@@ -1,6 +1,7 @@
 #include "memory_budget.h"
 
 #include "input_error.h"
+#include "strict_json.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -60,17 +61,14 @@ std::string trajectory_limit_advice() {
 TrajectorySize size_of_text(const std::string& text) {
     TrajectorySize size;
     size.text_bytes = text.size();
-    bool in_string = false;
-    bool escaped = false;
+    JsonStringScanner strings;
     bool in_number = false;
     for (const char c : text) {
-        if (in_string) {
-            if (escaped) {
-                escaped = false;
-            } else if (c == '\\') {
-                escaped = true;
-            } else if (c == '"') {
-                in_string = false;
+        const bool was_in_string = strings.in_string();
+        if (strings.consumes(c)) {
+            if (!was_in_string) { // an opening quote: one more string
+                ++size.strings;
+                in_number = false;
             }
             continue;
         }
@@ -79,11 +77,7 @@ TrajectorySize size_of_text(const std::string& text) {
             ++size.numbers;
         }
         in_number = digit || c == '-' || c == '+' || c == '.' || c == 'e' || c == 'E';
-        if (c == '"') {
-            ++size.strings;
-            in_string = true;
-            in_number = false;
-        } else if (c == '[') {
+        if (c == '[') {
             ++size.arrays;
         } else if (c == '{') {
             ++size.objects;

@@ -36,20 +36,12 @@ void reject_merge_conflict_markers(const std::string& text, const std::string& f
 // refused instead of exhausting the stack.
 void reject_deep_nesting(const std::string& text, const std::string& file) {
     int depth = 0;
-    bool in_string = false;
-    bool escaped = false;
+    JsonStringScanner strings;
     for (const char c : text) {
-        if (in_string) {
-            if (escaped) {
-                escaped = false;
-            } else if (c == '\\') {
-                escaped = true;
-            } else if (c == '"') {
-                in_string = false;
-            }
-        } else if (c == '"') {
-            in_string = true;
-        } else if (c == '[' || c == '{') {
+        if (strings.consumes(c)) {
+            continue;
+        }
+        if (c == '[' || c == '{') {
             if (++depth > max_json_nesting) {
                 throw InputError(file, "",
                                  "is nested too deeply: more than " +
@@ -273,21 +265,13 @@ template nlohmann::ordered_json parse_strict_json<nlohmann::ordered_json>(const 
 std::vector<std::size_t> minus_zero_integers(const std::string& text) {
     std::vector<std::size_t> found;
     std::size_t ordinal = 0;
-    bool in_string = false;
-    bool escaped = false;
+    JsonStringScanner strings;
     for (std::size_t i = 0; i < text.size(); ++i) {
         const char c = text[i];
-        if (in_string) {
-            if (escaped) {
-                escaped = false;
-            } else if (c == '\\') {
-                escaped = true;
-            } else if (c == '"') {
-                in_string = false;
-            }
-        } else if (c == '"') {
-            in_string = true;
-        } else if (c == '-' || (c >= '0' && c <= '9')) {
+        if (strings.consumes(c)) {
+            continue;
+        }
+        if (c == '-' || (c >= '0' && c <= '9')) {
             std::size_t end = i;
             while (end < text.size() && is_number_char(text[end])) {
                 ++end;

@@ -38,6 +38,34 @@ void check_json_text(const std::string& text, const std::string& file);
 InputError json_syntax_error(const nlohmann::json::exception& error, const std::string& file,
                              const std::string& path_of_next_value);
 
+// Reads JSON text a character at a time and says which characters belong to a
+// string literal (its quotes included), so scanners of the raw text (nesting
+// depth, number tokens, size counts) never mistake a string's contents for
+// structure.
+class JsonStringScanner {
+  public:
+    // True when `c` is part of a string literal, quotes included.
+    bool consumes(char c) {
+        if (in_string_) {
+            if (escaped_) {
+                escaped_ = false;
+            } else if (c == '\\') {
+                escaped_ = true;
+            } else if (c == '"') {
+                in_string_ = false;
+            }
+            return true;
+        }
+        in_string_ = c == '"';
+        return in_string_;
+    }
+    bool in_string() const { return in_string_; }
+
+  private:
+    bool in_string_ = false;
+    bool escaped_ = false;
+};
+
 // JSON paths as messages print them: `parent.key`, or `parent["odd key"]` for
 // keys that are not plain identifiers, and `parent[3]`.
 std::string json_member_path(const std::string& parent, const std::string& key);
