@@ -1,4 +1,4 @@
-// The Box2D adapter (harness/box2d_simulator.cpp): the fairness settings of
+// The Box2D adapter (harness/simulate/box2d_simulator.cpp): the fairness settings of
 // docs/physics.md ("Box2D, the second reference") checked by their physical
 // consequences, the exact answers Box2D should reach within its own errors,
 // refused shapes, clamp warnings, collision events and determinism.
