@@ -1,6 +1,8 @@
 // Reading a trajectory for the expectations (expectation_checks.h).
 #include "expectation_checks.h"
 
+#include "trajectory_columns.h"
+
 #include <algorithm>
 #include <limits>
 #include <map>
@@ -101,10 +103,9 @@ std::optional<std::vector<Mass>> masses_of(const Scene& scene, const Trajectory&
         if (body.is_static) {
             continue;
         }
-        std::size_t found[6] = {};
-        const char* suffixes[6] = {".x", ".y", ".angle", ".vx", ".vy", ".omega"};
-        for (std::size_t i = 0; i < 6; ++i) {
-            const auto it = index.find(body.name + suffixes[i]);
+        std::size_t found[body_channel_suffixes.size()] = {};
+        for (std::size_t i = 0; i < body_channel_suffixes.size(); ++i) {
+            const auto it = index.find(body.name + body_channel_suffixes[i]);
             if (it == index.end()) {
                 checks.failure("", "the trajectory has no columns for " + single_quoted(body.name));
                 return std::nullopt;
