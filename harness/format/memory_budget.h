@@ -37,6 +37,10 @@ struct TrajectorySize {
     std::uint64_t strings = 0;
     // The model's bytes in memory; the strings' characters are not in it.
     std::uint64_t memory_bytes() const;
+    // Both the text and the memory model at most `limit_bytes`.
+    bool within(std::uint64_t limit_bytes) const {
+        return text_bytes <= limit_bytes && memory_bytes() <= limit_bytes;
+    }
 };
 
 // The limit in bytes: IMPULSE_MAX_TRAJECTORY_MIB (a whole number of MiB, 1 to

@@ -54,6 +54,9 @@ Trajectory record(Simulator& simulator, const Scene& scene) {
                                         " frames of " + std::to_string(trajectory.columns.size()) +
                                         " numbers (" + std::to_string(steps) + " steps)",
                                     true);
+    // Read once: each event below only compares, and a sentence is built only
+    // for the event that passes the limit.
+    const std::uint64_t limit = trajectory_limit_bytes();
     trajectory.frames.reserve(static_cast<std::size_t>(steps) + 1);
     trajectory.frames.push_back(frame_at(0.0));
     for (long long k = 0; k < steps; ++k) {
@@ -63,11 +66,13 @@ Trajectory record(Simulator& simulator, const Scene& scene) {
             // Events are not known up front: the run stops, with a sentence,
             // at the first that could take the trajectory past the limit.
             size = size + event_size_bound(e.a.size() + e.b.size());
-            require_within_trajectory_limit(
-                size, scene.file, "",
-                "the run stopped at t = " + format_double(e.t) + " s: its frames and " +
-                    std::to_string(trajectory.events.size() + 1) + " collision events so far",
-                true);
+            if (!size.within(limit)) {
+                require_within_trajectory_limit(
+                    size, scene.file, "",
+                    "the run stopped at t = " + format_double(e.t) + " s: its frames and " +
+                        std::to_string(trajectory.events.size() + 1) + " collision events so far",
+                    true);
+            }
             trajectory.events.push_back(std::move(e));
         }
         trajectory.frames.push_back(frame_at(static_cast<double>(k + 1) * scene.dt));
