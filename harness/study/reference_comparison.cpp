@@ -1,6 +1,7 @@
 #include "reference_comparison.h"
 
 #include "box2d_simulator.h"
+#include "engine.h"
 #include "input_error.h"
 #include "record.h"
 #include "run.h"
@@ -72,6 +73,34 @@ void truncate(Trajectory& trajectory, double end) {
                             trajectory.events.end());
 }
 
+// The engine under study's run, or nullopt when it refused the scene's
+// settings (c.skipped says so). The impulse engine runs in process so that a
+// stop where the seed model ends keeps the steps before it (c.stopped and
+// stopped_at say where); any other engine runs through run_engine.
+std::optional<Trajectory> run_under_study(const EngineSpec& engine, const Scene& scene,
+                                          const Overrides& overrides, ReferenceComparison& c,
+                                          std::optional<double>& stopped_at) {
+    if (engine.kind != EngineSpec::Kind::impulse) {
+        EngineRun run = run_engine(engine, scene, overrides);
+        if (run.outcome == EngineRun::Outcome::unsupported) {
+            c.skipped = "unsupported by " + engine.name + ": " + run.message;
+            return std::nullopt;
+        }
+        return std::move(run.trajectory);
+    }
+    const Scene impulse_scene = with_overrides(scene, overrides);
+    StoppingSimulator impulse_simulator(make_impulse_simulator(impulse_scene));
+    Trajectory impulse = record(impulse_simulator, impulse_scene);
+    if (const std::optional<double> end = impulse_simulator.stopped_at()) {
+        truncate(impulse, *end);
+        stopped_at = end;
+        c.stopped = "the impulse engine stopped in the step after t = " + six_digits(*end) +
+                    " s (" + impulse_simulator.reason() +
+                    "); both runs are compared up to t = " + six_digits(*end) + " s";
+    }
+    return impulse;
+}
+
 } // namespace
 
 ReferenceComparison compare_with_box2d(const std::string& path, const ReferenceOptions& options) {
@@ -79,9 +108,10 @@ ReferenceComparison compare_with_box2d(const std::string& path, const ReferenceO
     ReferenceComparison c;
     c.name = scene.name;
     c.file = scene.file;
+    c.engine = options.engine.name;
     c.warnings = scene.warnings;
     c.scene_integrator = integrator_name(scene.solver.integrator);
-    // --dt is the step of both runs; the integrator is the impulse engine's only.
+    // --dt is the step of both runs; the integrator is the engine under study's only.
     Overrides overrides;
     overrides.dt = options.dt;
     Scene box2d_scene = with_overrides(scene, overrides);
@@ -108,15 +138,16 @@ ReferenceComparison compare_with_box2d(const std::string& path, const ReferenceO
     std::vector<std::string> warnings;
     const std::unique_ptr<Simulator> box2d_simulator = make_box2d_simulator(box2d_scene, warnings);
     refuse_tunnelling(impulse_scene);
-    StoppingSimulator impulse_simulator(make_impulse_simulator(impulse_scene));
-    Trajectory impulse = record(impulse_simulator, impulse_scene);
+    std::optional<double> stopped_at;
+    std::optional<Trajectory> studied =
+        run_under_study(options.engine, scene, overrides, c, stopped_at);
+    if (!studied) {
+        return c;
+    }
+    Trajectory impulse = std::move(*studied);
     Trajectory box2d = record(*box2d_simulator, box2d_scene);
-    if (const std::optional<double> end = impulse_simulator.stopped_at()) {
-        truncate(impulse, *end);
-        truncate(box2d, *end);
-        c.stopped = "the impulse engine stopped in the step after t = " + six_digits(*end) +
-                    " s (" + impulse_simulator.reason() +
-                    "); both runs are compared up to t = " + six_digits(*end) + " s";
+    if (stopped_at) {
+        truncate(box2d, *stopped_at);
     }
 
     c.dt = box2d_scene.dt;

@@ -1,8 +1,11 @@
-// The second reference's logic (impulse box2d): one scene run in the impulse
-// engine and in Box2D with friction off, the observables its "box2d" block
-// names compared (observables.h). The verb (cli/box2d.cpp) parses and prints.
+// The second reference's logic (impulse box2d): one scene run in the engine
+// under study (the impulse engine unless told otherwise: any engine behind
+// run_engine, engine.h) and in Box2D with friction off, the observables its
+// "box2d" block names compared (observables.h), computed from the two
+// trajectories. The verb (cli/box2d.cpp) parses and prints.
 #pragma once
 
+#include "engine.h"
 #include "observables.h"
 #include "scene.h"
 #include "trajectory.h"
@@ -17,8 +20,12 @@ namespace impulse::harness {
 
 // The command line's choices for both runs; unset means the scene's own.
 struct ReferenceOptions {
+    EngineSpec engine = impulse_engine(); // the engine compared with Box2D
     std::optional<double> dt;
     std::optional<int> substeps, velocity_iterations, position_iterations;
+    // The engine under study runs with the scene's own integrator instead of
+    // symplectic-euler (Box2D's); another engine is asked for it through the
+    // scene's solver.integrator, which it may ignore or refuse.
     bool scene_integrator = false;
 };
 
@@ -26,8 +33,12 @@ struct ReferenceOptions {
 struct ReferenceComparison {
     std::string name;
     std::string file;
+    std::string engine = "impulse"; // the engine under study's name
+    // Not empty when that engine refused the scene's settings (exit 3):
+    // "unsupported by ENGINE: ...", a skip with no rows (neither pass nor fail).
+    std::string skipped;
     double dt = 0.0;
-    std::string integrator;       // the impulse run's
+    std::string integrator;       // the engine under study's run's
     std::string scene_integrator; // the scene's own
     Box2dSettings box2d;          // as run, observables included
     std::string impulse_engine;
@@ -47,8 +58,10 @@ struct ReferenceComparison {
 };
 
 // Loads the scene and compares the two runs. Throws InputError for a scene
-// either engine refuses (a tunnel, a shape Box2D cannot take). Built only
-// with Box2D (IMPULSE_WITH_BOX2D).
+// either engine refuses (a tunnel, a shape Box2D cannot take) and, from
+// run_engine, for an engine that fails; an engine that refuses the scene's
+// settings (exit 3) is a skipped comparison. Built only with Box2D
+// (IMPULSE_WITH_BOX2D).
 ReferenceComparison compare_with_box2d(const std::string& path, const ReferenceOptions& options);
 
 } // namespace impulse::harness

@@ -1,5 +1,6 @@
 #include "sweep.h"
 
+#include "engine.h"
 #include "expectations.h"
 #include "input_error.h"
 #include "number_format.h"
@@ -19,6 +20,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 
 namespace impulse::harness {
 
@@ -110,6 +112,13 @@ std::unique_ptr<Simulator> simulator_for(const Scene& scene, bool box2d) {
 #endif
 }
 
+// Seconds per simulated second: their median and spread (max - min).
+void set_costs(SweepPoint& point, const std::vector<double>& costs) {
+    point.cost_median = median_of(costs);
+    const auto [lo, hi] = std::minmax_element(costs.begin(), costs.end());
+    point.cost_spread = *hi - *lo;
+}
+
 template <typename Measure>
 void measure(const Scene& scene, SweepPoint& point, int repeats, const Measure& error_of) {
     std::vector<double> costs;
@@ -134,14 +143,62 @@ void measure(const Scene& scene, SweepPoint& point, int repeats, const Measure& 
             }
         }
         point.ok = true;
-        point.cost_median = median_of(costs);
-        const auto [lo, hi] = std::minmax_element(costs.begin(), costs.end());
-        point.cost_spread = *hi - *lo;
+        set_costs(point, costs);
     } catch (const InputError& e) {
         point.ok = false;
         point.failure = e.what();
         point.error = std::numeric_limits<double>::quiet_NaN();
     }
+}
+
+// The overrides one grid point of another engine sends it: the grid is what
+// reaches an engine as a modified scene (docs/engine-protocol.md).
+Overrides engine_overrides(const SweepPoint& point) {
+    Overrides overrides;
+    overrides.dt = point.dt;
+    overrides.integrator = point.integrator;
+    overrides.toi_tolerance = point.toi_tolerance;
+    return overrides;
+}
+
+// A point of another engine, run through the protocol. Its cost is what the
+// engine reports when every repeat reports it (a median of mixed clocks would
+// mean nothing), otherwise the process's wall time. A refusal (exit 3) skips
+// the point at its first repeat; any other failure is run_engine's
+// InputError, for the whole sweep: the engine is broken, not the point.
+template <typename Measure>
+void measure_engine(const EngineSpec& engine, const Scene& scene, SweepPoint& point, int repeats,
+                    const Measure& error_of) {
+    const Overrides overrides = engine_overrides(point);
+    const Scene effective = with_overrides(scene, overrides);
+    const double simulated = static_cast<double>(step_count(effective)) * effective.dt;
+    std::vector<double> reported, process;
+    std::vector<std::optional<long long>> steps;
+    for (int k = 0; k < repeats; ++k) {
+        const EngineRun run = run_engine(engine, scene, overrides);
+        if (run.outcome == EngineRun::Outcome::unsupported) {
+            point.skipped = true;
+            point.failure = "unsupported by " + engine.name + ": " + run.message;
+            point.error = std::numeric_limits<double>::quiet_NaN();
+            return;
+        }
+        process.push_back(run.seconds / simulated);
+        if (run.cost) {
+            reported.push_back(run.cost->seconds / simulated);
+        }
+        steps.push_back(run.cost ? run.cost->steps : std::nullopt);
+        if (k == 0) {
+            point.error = error_of(run.trajectory);
+        }
+    }
+    point.ok = true;
+    const bool all_reported = reported.size() == process.size();
+    point.cost_source = all_reported ? SweepCost::engine_reported : SweepCost::process_time;
+    set_costs(point, all_reported ? reported : process);
+    point.work_counted = steps.front().has_value();
+    point.work.steps = steps.front().value_or(0);
+    point.work_identical =
+        std::all_of(steps.begin(), steps.end(), [&](const auto& s) { return s == steps.front(); });
 }
 
 } // namespace
@@ -162,9 +219,24 @@ SweepConfig default_sweep_config(const Scene& scene) {
     return config;
 }
 
+const char* sweep_cost_name(SweepCost cost) {
+    switch (cost) {
+    case SweepCost::engine_reported:
+        return "engine";
+    case SweepCost::process_time:
+        return "process";
+    case SweepCost::in_process:
+        break;
+    }
+    return "in-process";
+}
+
 std::string sweep_family(const SweepPoint& point) {
     if (point.box2d) {
         return "box2d";
+    }
+    if (point.kind != EngineSpec::Kind::impulse) {
+        return point.engine + " " + integrator_name(point.integrator);
     }
     return std::string("impulse ") + integrator_name(point.integrator) + "/" +
            toi_method_name(point.toi) + (point.ccd ? "+ccd" : "");
@@ -228,6 +300,29 @@ std::vector<SweepPoint> impulse_points(const SweepConfig& config, const std::vec
     return points;
 }
 
+// Another engine's grid: what reaches it as a modified scene (dt, integrator,
+// toi_tolerance), the scene's own toi method and ccd.
+std::vector<SweepPoint> engine_points(const SweepConfig& config, const Scene& scene) {
+    std::vector<SweepPoint> points;
+    for (const double dt : config.dts) {
+        for (const Integrator integrator : config.integrators) {
+            for (const double tolerance : config.toi_tolerances) {
+                SweepPoint p;
+                p.kind = config.engine.kind;
+                p.engine = config.engine.name;
+                p.dt = dt;
+                p.integrator = integrator;
+                p.toi = scene.solver.toi;
+                p.toi_tolerance = tolerance;
+                p.ccd = scene.solver.ccd;
+                p.family = sweep_family(p);
+                points.push_back(p);
+            }
+        }
+    }
+    return points;
+}
+
 // Box2D's points, after the impulse engine's (none in a build without Box2D).
 void add_box2d_points(const SweepConfig& config, std::vector<SweepPoint>& points) {
 #ifdef IMPULSE_WITH_BOX2D
@@ -266,11 +361,33 @@ Scene with_exact_expectations_only(const Scene& scene) {
     return exact_only;
 }
 
+// Another engine's reference: itself at the finest dt / 4, with the scene's
+// own solver settings (an integrator it may not have is not asked for).
+Trajectory engine_reference_run(const Scene& scene, const EngineSpec& engine, double finest,
+                                std::string& description) {
+    Overrides o;
+    o.dt = finest;
+    EngineRun run = run_engine(engine, scene, o);
+    if (run.outcome == EngineRun::Outcome::unsupported) {
+        throw InputError(scene.file, "",
+                         "the sweep's reference run (dt " + format_double(finest) +
+                             " s) is unsupported by " + engine.name + ": " + run.message);
+    }
+    description = "against a reference run at the finest settings (" + engine.name + ", dt " +
+                  format_double(finest) +
+                  " s, the scene's own solver settings): largest relative difference of the "
+                  "final frame's positions and velocities";
+    return std::move(run.trajectory);
+}
+
 // A run at the finest settings, for a scene without exact answers; says in
 // `description` what it is.
 Trajectory reference_run(const Scene& scene, const SweepConfig& config, bool any_ccd,
                          std::string& description) {
     const double finest = *std::min_element(config.dts.begin(), config.dts.end()) / 4.0;
+    if (config.engine.kind != EngineSpec::Kind::impulse) {
+        return engine_reference_run(scene, config.engine, finest, description);
+    }
     Scene s = scene;
     s.solver.toi = TimeOfImpactMethod::secant;
     s.solver.ccd = any_ccd; // a reference that tunnels is no reference
@@ -290,6 +407,28 @@ Trajectory reference_run(const Scene& scene, const SweepConfig& config, bool any
     return reference;
 }
 
+// Where the engine under study's costs came from, one sentence; empty for
+// the impulse engine, whose cost is measured as it always was.
+std::string cost_source(const SweepConfig& config, const std::vector<SweepPoint>& points) {
+    if (config.engine.kind == EngineSpec::Kind::impulse) {
+        return "";
+    }
+    std::size_t reported = 0, timed = 0;
+    for (const SweepPoint& p : points) {
+        reported += p.ok && p.cost_source == SweepCost::engine_reported ? 1 : 0;
+        timed += p.ok && p.cost_source == SweepCost::process_time ? 1 : 0;
+    }
+    if (reported > 0 && timed == 0) {
+        return "cost: the engine's own (its trajectory's cost.seconds)";
+    }
+    if (reported == 0) {
+        return "cost: process wall time (the engine reports none)";
+    }
+    return "cost: the engine's own (its trajectory's cost.seconds) at " +
+           plural(reported, "point", "points") +
+           ", process wall time (the engine reports none) at " + plural(timed, "point", "points");
+}
+
 } // namespace
 
 SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
@@ -302,12 +441,15 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
     }
     SweepResult result;
     result.scene = scene.name;
+    result.engine = config.engine.name;
     result.repeats = config.repeats;
     result.simulated_duration = static_cast<double>(step_count(scene)) * scene.dt;
 
-    const std::vector<bool> ccds = ccd_settings(scene, config);
+    const bool impulse_grid = config.engine.kind == EngineSpec::Kind::impulse;
+    const std::vector<bool> ccds =
+        impulse_grid ? ccd_settings(scene, config) : std::vector<bool>{scene.solver.ccd};
     const bool any_ccd = std::find(ccds.begin(), ccds.end(), true) != ccds.end();
-    result.points = impulse_points(config, ccds);
+    result.points = impulse_grid ? impulse_points(config, ccds) : engine_points(config, scene);
     add_box2d_points(config, result.points);
     if (result.points.empty()) {
         throw InputError(scene.file, "", "the sweep's grid is empty");
@@ -337,18 +479,21 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
     const std::size_t total = result.points.size();
     for (std::size_t i = 0; i < total; ++i) {
         SweepPoint& point = result.points[i];
-        if (result.against_exact) {
-            measure(scene, point, config.repeats,
-                    [&](const Trajectory& t) { return error_against_exact(exact_only, t); });
+        const auto error_of = [&](const Trajectory& t) {
+            return result.against_exact ? error_against_exact(exact_only, t)
+                                        : error_against_reference(reference, t);
+        };
+        if (point.box2d || point.kind == EngineSpec::Kind::impulse) {
+            measure(scene, point, config.repeats, error_of);
         } else {
-            measure(scene, point, config.repeats,
-                    [&](const Trajectory& t) { return error_against_reference(reference, t); });
+            measure_engine(config.engine, scene, point, config.repeats, error_of);
         }
         if (progress) {
             progress(i + 1, total, point);
         }
     }
     mark_fronts(result.points);
+    result.cost_source = cost_source(config, result.points);
     return result;
 }
 
@@ -371,146 +516,6 @@ std::vector<std::string> tunnelling_warnings(const Scene& scene, const SweepConf
         }
     }
     return warnings;
-}
-
-std::vector<std::size_t> pareto_front(const std::vector<std::pair<double, double>>& cost_error) {
-    std::vector<std::size_t> order(cost_error.size());
-    for (std::size_t i = 0; i < order.size(); ++i) {
-        order[i] = i;
-    }
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        return cost_error[a] != cost_error[b] ? cost_error[a] < cost_error[b] : a < b;
-    });
-    std::vector<std::size_t> front;
-    for (const std::size_t i : order) {
-        const auto [cost, error] = cost_error[i];
-        if (std::isnan(cost) || std::isnan(error)) {
-            continue;
-        }
-        bool dominated = false;
-        for (std::size_t j = 0; j < cost_error.size() && !dominated; ++j) {
-            const auto [c, e] = cost_error[j];
-            dominated = c <= cost && e <= error && (c < cost || e < error);
-        }
-        if (!dominated) {
-            front.push_back(i);
-        }
-    }
-    return front;
-}
-
-void mark_fronts(std::vector<SweepPoint>& points) {
-    std::map<std::string, std::vector<std::size_t>> families;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        points[i].on_front = false;
-        if (points[i].ok && !std::isnan(points[i].error)) {
-            families[points[i].family].push_back(i);
-        }
-    }
-    for (const auto& [family, members] : families) {
-        std::vector<std::pair<double, double>> cost_error;
-        for (const std::size_t i : members) {
-            cost_error.emplace_back(points[i].cost_median, points[i].error);
-        }
-        for (const std::size_t k : pareto_front(cost_error)) {
-            points[members[k]].on_front = true;
-        }
-    }
-}
-
-namespace {
-
-// A point a front can use: it ran and its error means something.
-bool measured_point(const SweepPoint& p) {
-    return p.ok && !std::isnan(p.error) && !std::isnan(p.cost_median);
-}
-
-bool dominates(const SweepPoint& a, const SweepPoint& b) {
-    return a.cost_median <= b.cost_median && a.error <= b.error &&
-           (a.cost_median < b.cost_median || a.error < b.error);
-}
-
-bool is_box2d_60hz(const SweepPoint& p) {
-    return p.box2d && p.substeps == target_box2d_substeps &&
-           p.velocity_iterations == target_box2d_velocity_iterations &&
-           p.position_iterations == target_box2d_position_iterations &&
-           std::abs(p.dt - target_box2d_dt) <= 1e-12 * target_box2d_dt;
-}
-
-} // namespace
-
-SweepTargets evaluate_targets(const SweepResult& result) {
-    SweepTargets t;
-    const std::vector<SweepPoint>& points = result.points;
-    for (const SweepPoint& p : points) {
-        t.measured = t.measured || (p.box2d && measured_point(p));
-    }
-    if (!t.measured) {
-        return t;
-    }
-
-    // Target 1. A --dt list typed in decimal lands within rounding of 1/60,
-    // not on it: the closest such dt is the 60 Hz point.
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        if (is_box2d_60hz(points[i]) &&
-            (!t.box2d_60hz_found || std::abs(points[i].dt - target_box2d_dt) <
-                                        std::abs(points[t.box2d_60hz].dt - target_box2d_dt))) {
-            t.box2d_60hz_found = true;
-            t.box2d_60hz = i;
-        }
-    }
-    t.error_target_measured = t.box2d_60hz_found && measured_point(points[t.box2d_60hz]);
-    if (t.error_target_measured) {
-        const SweepPoint& b = points[t.box2d_60hz];
-        for (std::size_t i = 0; i < points.size(); ++i) {
-            const SweepPoint& p = points[i];
-            if (p.box2d || !measured_point(p) || p.cost_median > b.cost_median) {
-                continue;
-            }
-            const SweepPoint* best = t.impulse_found ? &points[t.best_impulse] : nullptr;
-            if (best == nullptr || p.error < best->error ||
-                (p.error == best->error && p.cost_median < best->cost_median)) {
-                t.impulse_found = true;
-                t.best_impulse = i;
-            }
-        }
-        if (t.impulse_found) {
-            const SweepPoint& p = points[t.best_impulse];
-            // An error of exactly 0 says only that it is below what the
-            // measurement resolves: the floor gives a ratio it is at least.
-            t.impulse_error_zero = p.error == 0.0;
-            t.error_ratio = b.error / (t.impulse_error_zero ? sweep_error_floor : p.error);
-            t.cost_margin = b.cost_median / p.cost_median;
-            t.error_target_met = t.error_ratio >= target_error_ratio;
-        }
-    }
-
-    // Target 2. An impulse point that dominates a Box2D point is dominated by
-    // or equal to one on the impulse front, so checking every impulse point
-    // checks the front.
-    std::vector<std::size_t> box2d;
-    std::vector<std::pair<double, double>> cost_error;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        if (points[i].box2d && measured_point(points[i])) {
-            box2d.push_back(i);
-            cost_error.emplace_back(points[i].cost_median, points[i].error);
-        }
-    }
-    for (const std::size_t k : pareto_front(cost_error)) {
-        const SweepPoint& b = points[box2d[k]];
-        ++t.box2d_front_size;
-        const bool dominated = std::any_of(points.begin(), points.end(), [&](const SweepPoint& p) {
-            return !p.box2d && measured_point(p) && dominates(p, b);
-        });
-        if (dominated) {
-            ++t.box2d_front_dominated;
-        } else if (!t.undominated_found) {
-            t.undominated_found = true;
-            t.first_undominated = box2d[k];
-        }
-    }
-    t.front_target_met = t.box2d_front_size > 0 && !t.undominated_found;
-    return t;
 }
 
 } // namespace impulse::harness

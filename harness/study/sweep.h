@@ -3,8 +3,16 @@
 // tolerance and, on request, ccd; Box2D over time step, sub-steps and iterations), each point's
 // error and cost measured, and the Pareto front of every method family.
 // Measurement only: the command line prints (harness/cli/sweep.cpp).
+//
+// The engine under study is any engine behind run_engine (engine.h). The
+// impulse engine runs in process with its own grid (toi method and ccd too)
+// and work counters; any other engine gets the grid that reaches an engine as
+// a modified scene (Overrides: dt, integrator, toi_tolerance), and its cost is
+// what it reports (the trajectory's "cost" block) or else the process's wall
+// time, and the result says which.
 #pragma once
 
+#include "engine.h"
 #include "scene.h"
 #include "world.h"
 
@@ -17,8 +25,11 @@
 namespace impulse::harness {
 
 struct SweepConfig {
+    // The engine under study; the Box2D points below are the reference beside it.
+    EngineSpec engine = impulse_engine();
     std::vector<double> dts;
     std::vector<Integrator> integrators;
+    // The impulse engine's own settings: another engine runs the scene's.
     std::vector<TimeOfImpactMethod> toi_methods;
     std::vector<double> toi_tolerances;
     // solver.ccd for the impulse points (docs/engine.md, "Tunnelling"); empty:
@@ -41,12 +52,27 @@ std::vector<std::string> tunnelling_warnings(const Scene& scene, const SweepConf
 // iterations {8/3, 30/10}; 5 repeats.
 SweepConfig default_sweep_config(const Scene& scene);
 
+// Where a point's cost comes from.
+enum class SweepCost {
+    in_process,      // the impulse engine or Box2D, timed around the simulation
+    engine_reported, // the engine's own "cost" seconds
+    process_time,    // the whole process's wall time: the engine reports none
+};
+
+// "in-process", "engine" or "process", as the JSON and the CSV name it.
+const char* sweep_cost_name(SweepCost cost);
+
 // One grid point and what it measured.
 struct SweepPoint {
     bool box2d = false;
-    std::string family; // "impulse verlet/secant", "impulse verlet/secant+ccd", "box2d"
+    // The engine under study's points (box2d false): its kind and name.
+    EngineSpec::Kind kind = EngineSpec::Kind::impulse;
+    std::string engine = "impulse";
+    // "impulse verlet/secant", "impulse verlet/secant+ccd", "box2d", or for
+    // another engine its name and the integrator asked for ("my-engine verlet").
+    std::string family;
     double dt = 0.0;
-    // impulse points
+    // The engine under study's points (toi and ccd vary for impulse only)
     Integrator integrator = Integrator::euler;
     TimeOfImpactMethod toi = TimeOfImpactMethod::bisection;
     double toi_tolerance = 0.0;
@@ -57,20 +83,30 @@ struct SweepPoint {
     int position_iterations = 0;
 
     bool ok = false;
+    // The engine refused the point's settings (exit 3): neither measured nor
+    // failed; failure then says "unsupported by ENGINE: ...".
+    bool skipped = false;
     std::string failure; // why the engine refused this point, one sentence
     double error = 0.0;  // the largest relative error (see SweepResult::error_reference)
     // Seconds of (steady-clock) time per simulated second: median over the
     // repeats and their spread (max - min).
     double cost_median = 0.0;
     double cost_spread = 0.0;
-    // Deterministic work of one run (Box2D: steps only, the rest 0).
+    SweepCost cost_source = SweepCost::in_process;
+    // Deterministic work of one run (Box2D: steps only, the rest 0; another
+    // engine: the steps it reports, work_counted false when it reports none).
     WorkCounters work;
+    bool work_counted = true;
     bool work_identical = true; // every repeat counted the same work
     bool on_front = false;      // on its family's Pareto front in (cost, error)
 };
 
 struct SweepResult {
     std::string scene;
+    std::string engine = "impulse"; // the engine under study
+    // Empty for the impulse engine (its cost is as it always was); otherwise
+    // one sentence: "cost: process wall time (the engine reports none)", ...
+    std::string cost_source;
     bool against_exact = false;  // the scene's exact answers; otherwise a reference run
     std::string error_reference; // one sentence saying which
     double simulated_duration = 0.0;
@@ -87,7 +123,10 @@ inline constexpr double sweep_error_floor = 1e-9;
 // Runs the grid. Throws InputError when the configuration cannot apply to the
 // scene (an empty grid, a dt longer than the duration, ccd with local
 // stepping) or when a reference run is needed and the engine refuses it; a
-// grid point the engine refuses is a failed point, never an exception. The
+// grid point the impulse engine refuses is a failed point, never an
+// exception, one another engine refuses (exit 3) a skipped point, and any
+// other failure of another engine (a crash, a time-out, a bad trajectory) is
+// run_engine's InputError: the engine is broken, not the grid point. The
 // reference run uses ccd when the scene or any grid point does: a reference
 // that tunnels is no reference.
 SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
@@ -101,7 +140,8 @@ std::vector<std::size_t> pareto_front(const std::vector<std::pair<double, double
 // Sets on_front for every successful point, per family.
 void mark_fronts(std::vector<SweepPoint>& points);
 
-// "impulse verlet/secant", "impulse verlet/secant+ccd" (ccd on) or "box2d".
+// "impulse verlet/secant", "impulse verlet/secant+ccd" (ccd on), "box2d",
+// or "ENGINE INTEGRATOR" for another engine.
 std::string sweep_family(const SweepPoint& point);
 
 // The two targets against Box2D:
