@@ -14,6 +14,7 @@
 #include "run.h"
 #include "simulator.h"
 #include "single_precision.h"
+#include "study_engine.h"
 #include "tunnelling.h"
 
 #include <algorithm>
@@ -55,13 +56,18 @@ runs are compared up to its last complete step, and the output says so.
   --root DIR                   where harness/scenes/ is (default: .)
   --json                       the comparison as JSON, for scripts
   --out DIR                    also write both runs as trajectories, DIR/NAME.impulse.json
-                               and DIR/NAME.box2d.json, for impulse diff and render
+                               and DIR/NAME.box2d.json, for impulse diff and render (with
+                               --engine, NAME.ENGINE.json for the engine's run)
                                (regular files only; never into goldens/)
   --dt S                       time step of both runs, in seconds
   --substeps N                 Box2D steps per scene step (scene's box2d.substeps, default 1)
   --velocity-iterations N      Box2D's velocity iterations (default 8)
   --position-iterations N      Box2D's position iterations (default 3)
   --scene-integrator           run the impulse engine with the scene's own integrator
+  --engine NAME                the engine compared with Box2D (default impulse); it gets
+                               the scene with --dt and solver.integrator symplectic-euler
+                               (unless --scene-integrator), which it may ignore; a scene
+                               whose settings it refuses (exit 3) is skipped and listed
   --quiet                      no progress bar (drawn on standard error only when that
                                is a terminal, after about a second of work)
 
@@ -97,9 +103,9 @@ std::optional<double> difference(std::optional<double> a, std::optional<double> 
 }
 
 void write_table(std::ostream& out, const ReferenceComparison& c) {
-    const std::vector<std::string> header = {"observable",      "exact",       "impulse",
-                                             "Box2D",           "impulse err", "Box2D err",
-                                             "Box2D - impulse", "tolerance",   "within"};
+    const std::vector<std::string> header = {
+        "observable",          "exact",     c.engine, "Box2D", c.engine + " err", "Box2D err",
+        "Box2D - " + c.engine, "tolerance", "within"};
     std::vector<std::vector<std::string>> cells = {header};
     for (const ObservableRow& r : c.rows) {
         cells.push_back({r.name, short_number(r.exact), short_number(r.impulse),
@@ -158,18 +164,40 @@ constexpr const char* legend =
                rtol |impulse|, from the scene's box2d block.
 )";
 
+// The legend's last paragraph for an engine other than impulse, whose error
+// this tool cannot explain.
+std::string engine_errors_legend(const std::string& engine) {
+    return "  errors       " + engine +
+           " err and Box2D err are each run's value minus the exact "
+           "answer.\n               within: |Box2D - " +
+           engine + "| <= atol + rtol |" + engine + "|, from the scene's box2d block.\n";
+}
+
+// The first line: what the engine under study integrates with.
+std::string integrator_sentence(const std::string& engine, const ReferenceOptions& options) {
+    if (options.engine.kind == EngineSpec::Kind::impulse) {
+        return options.scene_integrator
+                   ? "the impulse engine integrates with each scene's own integrator "
+                     "(--scene-integrator), so the differences include the integrators'"
+                   : "the impulse engine integrates with symplectic-euler, Box2D's own "
+                     "integrator, so the difference that remains is the collision model's";
+    }
+    return options.scene_integrator
+               ? engine + " is given each scene's own solver.integrator (--scene-integrator)"
+               : engine + " is given solver.integrator symplectic-euler, Box2D's own "
+                          "integrator (an engine without integrators ignores it)";
+}
+
 void write_text(std::ostream& out, const std::vector<ReferenceComparison>& comparisons,
                 const ReferenceOptions& options) {
     out << "box2d: " << comparisons.size() << " scene" << (comparisons.size() == 1 ? "" : "s")
-        << "; "
-        << (options.scene_integrator
-                ? "the impulse engine integrates with each scene's own integrator "
-                  "(--scene-integrator), so the differences include the integrators'"
-                : "the impulse engine integrates with symplectic-euler, Box2D's own "
-                  "integrator, so the difference that remains is the collision model's")
-        << "\n";
+        << "; " << integrator_sentence(options.engine.name, options) << "\n";
     for (const ReferenceComparison& c : comparisons) {
         out << "\n" << c.name << " (" << c.file << ")";
+        if (!c.skipped.empty()) {
+            out << ": skipped, " << c.skipped << "\n";
+            continue;
+        }
         if (c.box2d.observables.empty()) {
             out << ": no observables declared\n";
             continue;
@@ -191,9 +219,15 @@ void write_text(std::ostream& out, const std::vector<ReferenceComparison>& compa
         width = std::max(width, c.name.size());
     }
     int passed = 0;
+    int skipped = 0;
     for (const ReferenceComparison& c : comparisons) {
-        passed += c.passed() ? 1 : 0;
         const std::string pad(width - c.name.size(), ' ');
+        if (!c.skipped.empty()) {
+            ++skipped;
+            out << "  skipped " << c.name << pad << "  " << c.skipped << "\n";
+            continue;
+        }
+        passed += c.passed() ? 1 : 0;
         out << "  " << (c.passed() ? "ok      " : "FAILED  ") << c.name << pad << "  ";
         if (c.rows.empty()) {
             out << "no observables declared\n";
@@ -203,10 +237,16 @@ void write_text(std::ostream& out, const std::vector<ReferenceComparison>& compa
             out << c.outside() << " of " << c.rows.size() << " rows outside tolerance\n";
         }
     }
-    const std::size_t failed = comparisons.size() - static_cast<std::size_t>(passed);
+    const std::size_t failed = comparisons.size() - static_cast<std::size_t>(passed + skipped);
     out << comparisons.size() << " scene" << (comparisons.size() == 1 ? "" : "s") << ": " << passed
-        << " passed, " << failed << " failed\n\n"
-        << legend;
+        << " passed, " << failed << " failed"
+        << (skipped > 0 ? ", " + std::to_string(skipped) + " skipped" : "") << "\n\n";
+    if (options.engine.kind == EngineSpec::Kind::impulse) {
+        out << legend;
+    } else {
+        const std::string text = legend;
+        out << text.substr(0, text.find("  errors")) << engine_errors_legend(options.engine.name);
+    }
 }
 
 // ---------------------------------------------------------------- JSON
@@ -215,19 +255,31 @@ nlohmann::json optional_number(std::optional<double> value) {
     return value && std::isfinite(*value) ? nlohmann::json(*value) : nlohmann::json(nullptr);
 }
 
+// For an engine other than impulse, the keys that name the impulse engine
+// name the engine under study instead: "engine" (with its "name") for
+// "impulse", "engine_error" for "impulse_error", "engine_integrator" for
+// "impulse_integrator"; a skipped scene has "passed": null and "skipped".
 std::string write_json(const std::vector<ReferenceComparison>& comparisons,
                        const ReferenceOptions& options) {
+    const bool own = options.engine.kind == EngineSpec::Kind::impulse;
+    const std::string key = own ? "impulse" : "engine";
     nlohmann::ordered_json scenes = nlohmann::ordered_json::array();
     for (const ReferenceComparison& c : comparisons) {
         nlohmann::ordered_json scene;
         scene["name"] = c.name;
         scene["file"] = c.file;
-        scene["passed"] = c.passed();
-        if (c.rows.empty()) {
+        scene["passed"] = c.skipped.empty() ? nlohmann::ordered_json(c.passed()) : nullptr;
+        if (!c.skipped.empty()) {
+            scene["skipped"] = c.skipped;
+        } else if (c.rows.empty()) {
             scene["note"] = "no observables declared";
         } else {
             scene["dt"] = c.dt;
-            scene["impulse"] = {{"engine", c.impulse_engine}, {"integrator", c.integrator}};
+            if (!own) {
+                scene[key]["name"] = c.engine;
+            }
+            scene[key]["engine"] = c.impulse_engine;
+            scene[key]["integrator"] = c.integrator;
             scene["box2d"] = {{"engine", c.box2d_engine},
                               {"substeps", c.box2d.substeps},
                               {"velocity_iterations", c.box2d.velocity_iterations},
@@ -242,9 +294,9 @@ std::string write_json(const std::vector<ReferenceComparison>& comparisons,
             row["path"] = r.path;
             row["name"] = r.name;
             row["exact"] = optional_number(r.exact);
-            row["impulse"] = optional_number(r.impulse);
+            row[key] = optional_number(r.impulse);
             row["box2d"] = optional_number(r.box2d);
-            row["impulse_error"] = optional_number(difference(r.impulse, r.exact));
+            row[key + "_error"] = optional_number(difference(r.impulse, r.exact));
             row["box2d_error"] = optional_number(difference(r.box2d, r.exact));
             row["difference"] = optional_number(difference(r.box2d, r.impulse));
             row["tolerance"] = optional_number(r.tolerance);
@@ -257,7 +309,10 @@ std::string write_json(const std::vector<ReferenceComparison>& comparisons,
     }
     nlohmann::ordered_json document;
     document["schema"] = "impulse/box2d-comparison@1";
-    document["impulse_integrator"] = options.scene_integrator ? "scene" : "symplectic-euler";
+    if (!own) {
+        document["engine"] = options.engine.name;
+    }
+    document[key + "_integrator"] = options.scene_integrator ? "scene" : "symplectic-euler";
     document["scenes"] = std::move(scenes);
     return document.dump(2) + "\n";
 }
@@ -271,7 +326,7 @@ void write_runs(const std::string& dir, const std::vector<ReferenceComparison>& 
     for (const ReferenceComparison& c : comparisons) {
         if (c.impulse_run && c.box2d_run) {
             const std::string base = (std::filesystem::path(dir) / c.name).string();
-            files.emplace_back(base + ".impulse.json", write_trajectory(*c.impulse_run));
+            files.emplace_back(base + "." + c.engine + ".json", write_trajectory(*c.impulse_run));
             files.emplace_back(base + ".box2d.json", write_trajectory(*c.box2d_run));
         }
     }
@@ -287,10 +342,11 @@ void write_runs(const std::string& dir, const std::vector<ReferenceComparison>& 
 } // namespace
 
 int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-    const Arguments a = parse_arguments(
-        args,
-        {"--root", "--out", "--dt", "--substeps", "--velocity-iterations", "--position-iterations"},
-        {"--help", "--json", "--scene-integrator", "--quiet"});
+    const Arguments a =
+        parse_arguments(args,
+                        {"--root", "--out", "--dt", "--substeps", "--velocity-iterations",
+                         "--position-iterations", engine_option, engine_command_option},
+                        {"--help", "--json", "--scene-integrator", "--quiet"});
     if (a.has_flag("--help")) {
         out << box2d_help;
         return exit_ok;
@@ -309,6 +365,7 @@ int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
         options.position_iterations = parse_count("--position-iterations", *n);
     }
     options.scene_integrator = a.has_flag("--scene-integrator");
+    options.engine = study_engine(a);
 #ifndef IMPULSE_WITH_BOX2D
     (void)out;
     err << "impulse box2d: this build has no Box2D (configured with IMPULSE_WITH_BOX2D=OFF); "

@@ -10,6 +10,8 @@
 #include "output_path.h"
 #include "progress.h"
 #include "render.h"
+#include "study_engine.h"
+#include "sweep_csv.h"
 #include "sweep_plot.h"
 #include "text.h"
 
@@ -68,6 +70,12 @@ together) dominating every point of Box2D's.
   --box2d-substeps LIST     Box2D steps per scene step (default 1,4)
   --box2d-iterations LIST   velocity/position iterations (default 8/3,30/10)
   --no-box2d                impulse points only
+  --engine NAME             the engine under study (default impulse); for an engine
+                            other than impulse the grid is --dt x --integrator x
+                            --toi-tolerance, which reach it as a modified scene
+                            (docs/engine-protocol.md); points it refuses (exit 3) are
+                            skipped and listed; its cost is what it reports, or the
+                            process's wall time, and the output says which
   --repeats N               timed runs per grid point (default 5)
   --json                    the sweep as JSON on standard output
   --csv                     the sweep as CSV on standard output
@@ -94,6 +102,16 @@ int whole_number(const std::string& option, const std::string& text) {
 
 SweepConfig config_from(const Arguments& a, const Scene& scene) {
     SweepConfig config = default_sweep_config(scene);
+    config.engine = study_engine(a);
+    if (config.engine.kind != EngineSpec::Kind::impulse) {
+        for (const char* option : {"--toi", "--ccd"}) {
+            if (a.option(option)) {
+                throw UsageError(std::string(option) + " varies the impulse engine's own " +
+                                 "settings; the grid of " + config.engine.name +
+                                 " is --dt, --integrator and --toi-tolerance");
+            }
+        }
+    }
     if (const auto list = a.option("--dt")) {
         config.dts.clear();
         for (const std::string& item : comma_list(*list)) {
@@ -194,11 +212,13 @@ std::string dt_text(double dt) {
 }
 
 // "Box2D 1/60 sub 1, it 8/3", "verlet/secant 1/30 tol 1e-12",
-// "verlet/secant+ccd 1/30 tol 1e-12".
+// "verlet/secant+ccd 1/30 tol 1e-12", "my-engine verlet 1/30 tol 1e-12".
 std::string point_name(const SweepPoint& p) {
+    const bool own = p.kind == EngineSpec::Kind::impulse;
     const std::string method = p.box2d ? std::string("Box2D")
+                               : !own  ? p.family
                                        : std::string(integrator_name(p.integrator)) + "/" +
-                                             toi_method_name(p.toi) + (p.ccd ? "+ccd" : "");
+                                            toi_method_name(p.toi) + (p.ccd ? "+ccd" : "");
     return method + " " + dt_text(p.dt) + " " + settings_of(p);
 }
 
@@ -240,10 +260,10 @@ std::string error_target_text(const SweepResult& r, const SweepTargets& t) {
     text += point_name(b) + ": " + error_and_cost(b) + "; ";
     const std::string target = " (target >= " + sci(target_error_ratio, 0) + ")";
     if (!t.impulse_found) {
-        return text + "no impulse point costs that little: not met" + target;
+        return text + "no " + r.engine + " point costs that little: not met" + target;
     }
     const SweepPoint& p = r.points[t.best_impulse];
-    text += "best impulse at <= that cost: " + point_name(p) + ", ";
+    text += "best " + r.engine + " at <= that cost: " + point_name(p) + ", ";
     if (t.impulse_error_zero) {
         text += "error 0 (below the floor " + sci(sweep_error_floor, 0) + ", taken as it) at " +
                 sci(p.cost_median) + " s/s";
@@ -258,7 +278,7 @@ std::string error_target_text(const SweepResult& r, const SweepTargets& t) {
 
 // Target 2 in one sentence.
 std::string front_target_text(const SweepResult& r, const SweepTargets& t) {
-    std::string text = "Pareto front: impulse's front dominates ";
+    std::string text = "Pareto front: " + r.engine + "'s front dominates ";
     if (t.front_target_met) {
         return text +
                (t.box2d_front_size == 1
@@ -284,12 +304,51 @@ void write_targets(const SweepResult& r, std::ostream& out) {
     out << "  " << front_target_text(r, t) << "\n";
 }
 
+// How many points were measured, failed and skipped; each reason for a skip
+// once, with how many points it skipped.
+void write_counts(const SweepResult& r, std::ostream& out) {
+    std::size_t failed = 0;
+    std::vector<std::pair<std::string, std::size_t>> skips; // in the order first met
+    for (const SweepPoint& p : r.points) {
+        failed += p.ok || p.skipped ? 0 : 1;
+        if (p.skipped) {
+            const auto same = std::find_if(skips.begin(), skips.end(),
+                                           [&](const auto& s) { return s.first == p.failure; });
+            if (same == skips.end()) {
+                skips.emplace_back(p.failure, 1);
+            } else {
+                ++same->second;
+            }
+        }
+    }
+    std::size_t skipped = 0;
+    for (const auto& [reason, n] : skips) {
+        skipped += n;
+    }
+    out << "\n"
+        << r.points.size() - failed - skipped << " points measured, " << failed << " failed"
+        << (skipped > 0 ? ", " + std::to_string(skipped) + " skipped" : "") << "\n";
+    for (const auto& [reason, n] : skips) {
+        out << "skipped " << plural(n, "point", "points") << ": " << reason << "\n";
+    }
+    out << "\n";
+}
+
 void write_table(const SweepResult& r, std::ostream& out) {
     out << "sweep: " << r.scene << ", " << r.points.size() << " grid points, " << r.repeats
         << " repeats each, " << format_double(r.simulated_duration) << " s simulated\n";
     out << "error " << r.error_reference << "\n";
-    out << "cost: seconds of wall time per simulated second (median +- spread); * on its "
-           "family's Pareto front\n\n";
+    if (r.cost_source.empty()) {
+        out << "cost: seconds of wall time per simulated second (median +- spread); * on its "
+               "family's Pareto front\n\n";
+    } else {
+        // Box2D's points are timed in process whatever the engine's cost is.
+        const bool any_box2d = std::any_of(r.points.begin(), r.points.end(),
+                                           [](const SweepPoint& p) { return p.box2d; });
+        out << r.cost_source << ", in seconds per simulated second (median +- spread)"
+            << (any_box2d ? "; Box2D's points: wall time in process" : "")
+            << "; * on its family's Pareto front\n\n";
+    }
     // As wide as the longest family ("+ccd" can take one past the usual 36).
     std::size_t method_width = 36;
     for (const SweepPoint& p : r.points) {
@@ -303,13 +362,13 @@ void write_table(const SweepResult& r, std::ostream& out) {
         out << padded(p.family, method_width) << padded(dt_text(p.dt), 7)
             << padded(settings_of(p), 17);
         if (!p.ok) {
-            out << "  FAILED: " << p.failure << "\n";
+            out << (p.skipped ? std::string("  skipped") : "  FAILED: " + p.failure) << "\n";
             continue;
         }
         out << padded(sci(p.error), 10, true) << padded(sci(p.cost_median), 11, true)
             << padded(sci(p.cost_spread, 1), 10, true)
-            << padded(std::to_string(p.work.steps), 9, true);
-        if (p.box2d) {
+            << padded(p.work_counted ? std::to_string(p.work.steps) : "-", 9, true);
+        if (p.box2d || p.kind != EngineSpec::Kind::impulse) {
             out << padded("-", 10, true) << padded("-", 9, true);
         } else {
             out << padded(std::to_string(p.work.narrow_phase_queries), 10, true)
@@ -317,11 +376,7 @@ void write_table(const SweepResult& r, std::ostream& out) {
         }
         out << (p.on_front ? " *" : "") << (p.work_identical ? "" : " (work varied!)") << "\n";
     }
-    std::size_t failed = 0;
-    for (const SweepPoint& p : r.points) {
-        failed += p.ok ? 0 : 1;
-    }
-    out << "\n" << r.points.size() - failed << " points measured, " << failed << " failed\n\n";
+    write_counts(r, out);
     write_targets(r, out);
 }
 
@@ -363,16 +418,20 @@ nlohmann::json targets_json(const SweepResult& r) {
 }
 
 nlohmann::json to_json(const SweepResult& r) {
+    const bool other_engine = !r.cost_source.empty();
     nlohmann::json points = nlohmann::json::array();
     for (const SweepPoint& p : r.points) {
         nlohmann::json j;
-        j["engine"] = p.box2d ? "box2d" : "impulse";
+        j["engine"] = p.box2d ? "box2d" : p.engine;
         j["family"] = p.family;
         j["dt"] = p.dt;
         if (p.box2d) {
             j["substeps"] = p.substeps;
             j["velocity_iterations"] = p.velocity_iterations;
             j["position_iterations"] = p.position_iterations;
+        } else if (p.kind != EngineSpec::Kind::impulse) {
+            j["integrator"] = integrator_name(p.integrator);
+            j["toi_tolerance"] = p.toi_tolerance;
         } else {
             j["integrator"] = integrator_name(p.integrator);
             j["toi"] = toi_method_name(p.toi);
@@ -380,6 +439,10 @@ nlohmann::json to_json(const SweepResult& r) {
             j["ccd"] = p.ccd;
         }
         j["ok"] = p.ok;
+        if (other_engine) {
+            j["skipped"] = p.skipped;
+            j["cost_source"] = p.ok ? nlohmann::json(sweep_cost_name(p.cost_source)) : nullptr;
+        }
         if (!p.ok) {
             j["failure"] = p.failure;
         }
@@ -390,56 +453,26 @@ nlohmann::json to_json(const SweepResult& r) {
                      {"narrow_phase_queries", p.work.narrow_phase_queries},
                      {"toi_iterations", p.work.toi_iterations},
                      {"collisions", p.work.collisions}};
+        if (!p.work_counted) {
+            j["work"] = nullptr;
+        }
         j["work_identical"] = p.work_identical;
         j["on_front"] = p.on_front;
         points.push_back(std::move(j));
     }
-    return {{"scene", r.scene},
-            {"error_reference", r.error_reference},
-            {"against_exact", r.against_exact},
-            {"simulated_duration", r.simulated_duration},
-            {"repeats", r.repeats},
-            {"cost_unit", "seconds per simulated second"},
-            {"points", std::move(points)},
-            {"targets", targets_json(r)}};
-}
-
-std::string csv_field(const std::string& text) {
-    if (text.find_first_of(",\"\n") == std::string::npos) {
-        return text;
+    nlohmann::json document = {{"scene", r.scene},
+                               {"error_reference", r.error_reference},
+                               {"against_exact", r.against_exact},
+                               {"simulated_duration", r.simulated_duration},
+                               {"repeats", r.repeats},
+                               {"cost_unit", "seconds per simulated second"},
+                               {"points", std::move(points)},
+                               {"targets", targets_json(r)}};
+    if (other_engine) {
+        document["engine"] = r.engine;
+        document["cost_source"] = r.cost_source;
     }
-    std::string quoted = "\"";
-    for (const char c : text) {
-        quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-    }
-    return quoted + "\"";
-}
-
-std::string csv_number(double value) {
-    return std::isfinite(value) ? format_double(value) : "";
-}
-
-void write_csv(const SweepResult& r, std::ostream& out) {
-    out << "engine,family,dt,integrator,toi,toi_tolerance,ccd,substeps,velocity_iterations,"
-           "position_iterations,ok,error,cost_median,cost_spread,steps,narrow_phase_queries,"
-           "toi_iterations,collisions,on_front,failure\n";
-    for (const SweepPoint& p : r.points) {
-        out << (p.box2d ? "box2d" : "impulse") << "," << csv_field(p.family) << ","
-            << format_double(p.dt) << ",";
-        if (p.box2d) {
-            out << ",,,," << p.substeps << "," << p.velocity_iterations << ","
-                << p.position_iterations << ",";
-        } else {
-            out << integrator_name(p.integrator) << "," << toi_method_name(p.toi) << ","
-                << format_double(p.toi_tolerance) << "," << (p.ccd ? "true" : "false") << ",,,,";
-        }
-        out << (p.ok ? "true" : "false") << "," << (p.ok ? csv_number(p.error) : "") << ","
-            << (p.ok ? csv_number(p.cost_median) : "") << ","
-            << (p.ok ? csv_number(p.cost_spread) : "") << "," << p.work.steps << ","
-            << p.work.narrow_phase_queries << "," << p.work.toi_iterations << ","
-            << p.work.collisions << "," << (p.on_front ? "true" : "false") << ","
-            << csv_field(p.failure) << "\n";
-    }
+    return document;
 }
 
 } // namespace
@@ -448,7 +481,8 @@ int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
     const Arguments a =
         parse_arguments(args,
                         {"--dt", "--integrator", "--toi", "--toi-tolerance", "--box2d-substeps",
-                         "--box2d-iterations", "--ccd", "--repeats", "--svg", "--root"},
+                         "--box2d-iterations", "--ccd", "--repeats", "--svg", "--root",
+                         engine_option, engine_command_option},
                         {"--help", "--json", "--csv", "--no-box2d", "--progress", "--quiet"});
     if (a.has_flag("--help")) {
         out << sweep_help;
@@ -504,7 +538,7 @@ int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
     if (a.has_flag("--json")) {
         out << to_json(result).dump(2) << "\n";
     } else if (a.has_flag("--csv")) {
-        write_csv(result, out);
+        out << sweep_csv(result);
     } else {
         write_table(result, is_standard_output(svg) ? err : out);
     }

@@ -142,7 +142,7 @@ void draw_header(std::ostringstream& s, const SweepLayout& l, const SweepResult&
 }
 
 // Decade grid lines with their labels, and the axes' names.
-void draw_axes(std::ostringstream& s, const SweepLayout& l) {
+void draw_axes(std::ostringstream& s, const SweepLayout& l, const SweepResult& r) {
     const double left = SweepLayout::left, top = SweepLayout::top, plot_w = SweepLayout::plot_w;
     const double plot_h = l.plot_h;
     // Integer tick counts: the ends are whole decades, and a floating-point
@@ -168,7 +168,12 @@ void draw_axes(std::ostringstream& s, const SweepLayout& l) {
     }
     s << "<text x=\"" << fixed_text(left + plot_w / 2, 1) << "\" y=\""
       << fixed_text(SweepLayout::height - 16, 1)
-      << "\" text-anchor=\"middle\">cost: wall time per simulated second (s/s, log)</text>\n";
+      << "\" text-anchor=\"middle\">"
+      // Another engine's cost is what it reports or the process's wall time:
+      // the caption says which (the sweep's cost_source).
+      << xml_escape(r.cost_source.empty() ? "cost: wall time"
+                                          : r.cost_source.substr(0, r.cost_source.find(';')))
+      << " per simulated second (s/s, log)</text>\n";
     s << "<text transform=\"translate(20," << fixed_text(top + plot_h / 2, 1)
       << ") rotate(-90)\" text-anchor=\"middle\">error (relative, log; 0 drawn at 1e-17)</text>\n";
 }
@@ -246,7 +251,7 @@ std::string sweep_svg(const SweepResult& r) {
     std::map<std::string, std::string> colour = family_colours(families);
     std::ostringstream s;
     draw_header(s, layout, r);
-    draw_axes(s, layout);
+    draw_axes(s, layout, r);
     draw_points(s, layout, colour);
     draw_fronts(s, layout, families, colour);
     draw_sweep_legend(s, families, colour);

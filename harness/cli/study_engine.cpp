@@ -1,0 +1,61 @@
+#include "study_engine.h"
+
+#include <algorithm>
+#include <sstream>
+#include <vector>
+
+namespace impulse::harness::cli {
+
+namespace {
+
+// The name rule of scenes and bodies: an engine's name becomes a goldens
+// folder and a column of tables.
+bool is_engine_name(const std::string& name) {
+    const auto letter_or_digit = [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+    };
+    return !name.empty() && name.size() <= 64 && letter_or_digit(name.front()) &&
+           std::all_of(name.begin(), name.end(), [&](char c) {
+               return letter_or_digit(c) || c == '.' || c == '_' || c == '-';
+           });
+}
+
+} // namespace
+
+EngineSpec study_engine(const std::optional<std::string>& name) {
+    if (!name || *name == "impulse") {
+        return impulse_engine();
+    }
+    if (*name == "box2d") {
+        return box2d_engine();
+    }
+    throw UsageError("--engine takes impulse or box2d, got '" + *name + "'");
+}
+
+EngineSpec study_engine(const Arguments& arguments) {
+    const std::optional<std::string> name = arguments.option(engine_option);
+    const std::optional<std::string> command = arguments.option(engine_command_option);
+    if (!command) {
+        return study_engine(name);
+    }
+    EngineSpec spec;
+    spec.kind = EngineSpec::Kind::external;
+    spec.name = name.value_or("external");
+    if (spec.name == "impulse" || spec.name == "box2d" || !is_engine_name(spec.name)) {
+        throw UsageError("--engine with --engine-command names the external engine: 1 to 64 "
+                         "letters, digits, '.', '_' or '-', not impulse or box2d, got '" +
+                         spec.name + "'");
+    }
+    std::istringstream words(*command);
+    for (std::string word; words >> word;) {
+        spec.command.push_back(word);
+    }
+    if (spec.command.empty()) {
+        throw UsageError("--engine-command needs a program to run, got '" + *command + "'");
+    }
+    spec.working_directory = ".";
+    spec.origin = "--engine-command";
+    return spec;
+}
+
+} // namespace impulse::harness::cli

@@ -1,0 +1,16 @@
+// The sweep as CSV (impulse sweep --csv), one row per grid point, kept apart
+// from the verb as its plot is (sweep_plot.h).
+#pragma once
+
+#include "sweep.h"
+
+#include <string>
+
+namespace impulse::harness {
+
+// A header row and one row per point, numbers in shortest round-trip form,
+// an empty field where a point has no value. A sweep of an engine other than
+// impulse has one more column, cost_source (engine, process or in-process).
+std::string sweep_csv(const SweepResult& result);
+
+} // namespace impulse::harness
