@@ -100,18 +100,25 @@ int whole_number(const std::string& option, const std::string& text) {
     return value;
 }
 
+// The toi method and ccd are the impulse engine's own grid dimensions: they
+// do not reach another engine as overrides (docs/engine-protocol.md).
+void refuse_impulse_only_options(const Arguments& a, const EngineSpec& engine) {
+    if (engine.kind == EngineSpec::Kind::impulse) {
+        return;
+    }
+    for (const char* option : {"--toi", "--ccd"}) {
+        if (a.option(option)) {
+            throw UsageError(std::string(option) + " varies the impulse engine's own settings; " +
+                             "the grid of " + engine.name +
+                             " is --dt, --integrator and --toi-tolerance");
+        }
+    }
+}
+
 SweepConfig config_from(const Arguments& a, const Scene& scene) {
     SweepConfig config = default_sweep_config(scene);
     config.engine = study_engine(a);
-    if (config.engine.kind != EngineSpec::Kind::impulse) {
-        for (const char* option : {"--toi", "--ccd"}) {
-            if (a.option(option)) {
-                throw UsageError(std::string(option) + " varies the impulse engine's own " +
-                                 "settings; the grid of " + config.engine.name +
-                                 " is --dt, --integrator and --toi-tolerance");
-            }
-        }
-    }
+    refuse_impulse_only_options(a, config.engine);
     if (const auto list = a.option("--dt")) {
         config.dts.clear();
         for (const std::string& item : comma_list(*list)) {
