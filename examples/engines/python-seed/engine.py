@@ -62,6 +62,13 @@ def need(obj, key, path, kind):
     return obj[key]
 
 
+def positive(obj, key, path):
+    value = need(obj, key, path, "number")
+    if not value > 0.0:
+        raise BadScene(f"{path}.{key} must be > 0" if path else f"{key} must be > 0")
+    return value
+
+
 def vector(value, path):
     if not isinstance(value, list) or len(value) != 2:
         raise BadScene(f"{path} must be [x, y]")
@@ -80,7 +87,7 @@ def read_solver(scene):
     for key in solver:
         if key not in known:
             raise Unsupported(f"solver.{key} is a setting this engine does not know")
-    settings = {key: need(solver, key, "solver", "number")
+    settings = {key: positive(solver, key, "solver")
                 for key in ("toi_tolerance", "contact_tolerance")}
     settings["integrator"] = need(solver, "integrator", "solver", "string")
     if settings["integrator"] not in INTEGRATORS:
@@ -114,7 +121,7 @@ def read_shape(body, path):
     if len(shape) != 1:
         raise BadScene(f"{path}.shape must have exactly one of circle, box, polygon")
     if "circle" in shape:
-        return {"radius": need(shape, "circle", f"{path}.shape", "number"), "vertices": None}
+        return {"radius": positive(shape, "circle", f"{path}.shape"), "vertices": None}
     if "box" in shape:
         hx, hy = need_vector(shape, "box", f"{path}.shape")
         vertices = [(-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy)]
@@ -141,9 +148,9 @@ def read_body(body, path):
         return out, (position[0], position[1], angle, 0.0, 0.0, 0.0)
     velocity = need_vector(body, "velocity", path)
     omega = need(body, "angular_velocity", path, "number")
-    out["inv_mass"] = 1.0 / need(body, "mass", path, "number")
+    out["inv_mass"] = 1.0 / positive(body, "mass", path)
     rotates = need(body, "rotation", path, "bool") if "rotation" in body else True
-    out["inv_inertia"] = 1.0 / need(body, "inertia", path, "number") if rotates else 0.0
+    out["inv_inertia"] = 1.0 / positive(body, "inertia", path) if rotates else 0.0
     return out, (position[0], position[1], angle, velocity[0], velocity[1], omega)
 
 
@@ -161,11 +168,13 @@ def read_scene(path):
     world = {"name": need(scene, "name", "", "string"),
              "gravity": need_vector(scene, "gravity", ""),
              "e": need(scene, "restitution", "", "number"),
-             "dt": need(scene, "dt", "", "number"),
+             "dt": positive(scene, "dt", ""),
              "duration": need(scene, "duration", "", "number"),
              **read_solver(scene)}
-    if not world["dt"] > 0 or world["duration"] < world["dt"]:
-        raise BadScene("dt must be > 0 and duration at least dt")
+    if not world["duration"] >= world["dt"]:
+        raise BadScene("duration must be at least dt")
+    if not 0.0 <= world["e"] <= 1.0:
+        raise BadScene("restitution must be in [0, 1]")
     bodies, states = [], []
     for i, body in enumerate(need(scene, "bodies", "", "list")):
         constants, state = read_body(body, f"bodies[{i}]")
