@@ -100,9 +100,16 @@ json ground() {
 
 json body(const std::string& name, const json& shape, const json& position, double angle,
           const json& velocity, double mass, double inertia) {
-    return {{"name", name},   {"shape", shape},       {"position", position},
-            {"angle", angle}, {"velocity", velocity}, {"angular_velocity", 0.0},
-            {"mass", mass},   {"inertia", inertia}};
+    return {{"name", name},
+            {"static", false},
+            {"shape", shape},
+            {"position", position},
+            {"angle", angle},
+            {"velocity", velocity},
+            {"angular_velocity", 0.0},
+            {"mass", mass},
+            {"inertia", inertia},
+            {"rotation", true}};
 }
 
 // The scene as the harness reads it, for the exact answers of its parameters.
@@ -291,6 +298,35 @@ TEST_CASE("python-seed: a box landing on one corner meets the corner-impact answ
     CHECK(after[4].get<double>() == Approx(0.0).margin(1e-12));
     CHECK(after[5].get<double>() == Approx(exact.vy_after - 9.81 * flight).epsilon(1e-9));
     CHECK(after[6].get<double>() == Approx(exact.w_after).epsilon(1e-9));
+}
+
+TEST_CASE("python-seed: a tilted box that does not rotate bounces by the drop ladder, unturned",
+          "[python-seed]") {
+    // "rotation": false is infinite inertia: Eq. 9 loses its rotational terms
+    // (Eq. 6), so the box landing on a corner bounces like a point mass.
+    json box = body("box", {{"box", {1.0, 0.5}}}, {0.0, 3.0}, 0.3, {0.0, 0.0}, 2.0, 0.0);
+    box.erase("inertia");
+    box["rotation"] = false;
+    const json scene =
+        normalized_scene("verlet", 0.5, 1.0 / 60.0, 2.0, {0.0, -9.81}, {ground(), box});
+    const Scene s = harness_scene(scene);
+    const DropLadder drop = *impulse::harness::drop_ladder(s, scene_body(s, "box"));
+    const json trajectory = run_scene(scene);
+
+    const std::vector<json> hits = events_of(trajectory, "box");
+    REQUIRE(hits.size() >= 3);
+    for (int n = 1; n <= 3; ++n) {
+        const json& hit = hits[static_cast<std::size_t>(n - 1)];
+        INFO("impact " << n);
+        CHECK(hit["t"].get<double>() ==
+              Approx(drop.impact_time(n)).epsilon(drop_rtol).margin(1e-12));
+        CHECK(hit["vn_after"].get<double>() ==
+              Approx(drop.rebound_speed(n)).epsilon(drop_rtol).margin(1e-12));
+    }
+    for (const json& f : trajectory["frames"]) {
+        REQUIRE(f[3].get<double>() == 0.3);
+        REQUIRE(f[6].get<double>() == 0.0);
+    }
 }
 
 TEST_CASE("python-seed: with e = 1 under symplectic Euler energy stays within the "

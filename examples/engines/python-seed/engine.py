@@ -93,12 +93,14 @@ def read_solver(scene):
     if settings["integrator"] not in INTEGRATORS:
         raise Unsupported(f"solver.integrator \"{settings['integrator']}\" is not one of "
                           f"{', '.join(INTEGRATORS)}")
-    if need(solver, "contacts", "solver", "string") != "single":
-        raise Unsupported("solver.contacts other than \"single\" is not modelled: the seed "
-                          "resolves one point of one pair at a time")
-    if need(solver, "vertex_normal", "solver", "string") != "reference-face":
-        raise Unsupported("solver.vertex_normal other than \"reference-face\" is not modelled: "
-                          "the seed treats a vertex/vertex contact as vertex/edge")
+    contacts = need(solver, "contacts", "solver", "string")
+    if contacts != "single":
+        raise Unsupported(f"solver.contacts \"{contacts}\" is not modelled: the seed resolves "
+                          "one point of one pair at a time")
+    vertex_normal = need(solver, "vertex_normal", "solver", "string")
+    if vertex_normal != "reference-face":
+        raise Unsupported(f"solver.vertex_normal \"{vertex_normal}\" is not modelled: the seed "
+                          "treats a vertex/vertex contact as vertex/edge")
     if need(solver, "resting", "solver", "bool"):
         raise Unsupported("solver.resting true is not modelled: the seed resolves collisions "
                           "only, never resting contact")
