@@ -37,8 +37,9 @@ const fs::path engine_script =
 // tests fail saying so: an engine example nobody runs is not tested.
 std::string python3() {
     const std::string found = IMPULSE_PYTHON3;
-    INFO("python3 was not found when the build was configured (" << found
-                                                                 << "); scripts/setup installs it");
+    INFO("no python3 at '" << found
+                           << "' (where CMake found it, or NOTFOUND): "
+                              "scripts/setup installs python3; then configure the build again");
     REQUIRE(fs::exists(found));
     return found;
 }
