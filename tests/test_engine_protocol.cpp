@@ -94,10 +94,11 @@ Scene round_trip(const Scene& scene) {
     return parse_scene(write_normalized_scene(scene), "normalized " + scene.file);
 }
 
-// A scene with one dynamic body and nothing to hit: 10 steps of 0.01 s.
+// A scene with one dynamic body and nothing it reaches: 10 steps of 0.01 s.
 const std::string fall_scene_text = R"({"schema": "impulse/scene@1", "name": "fall",
   "dt": 0.01, "duration": 0.1,
-  "bodies": [{"name": "ball", "shape": {"circle": 0.5}, "position": [0, 10], "velocity": [1, 0]}]})";
+  "bodies": [{"name": "ball", "shape": {"circle": 0.5}, "position": [0, 10], "velocity": [1, 0]},
+             {"name": "floor", "static": true, "shape": {"box": [5, 1]}, "position": [0, -100]}]})";
 
 EngineSpec fake(const std::vector<std::string>& args, double time_limit = 30.0) {
     EngineSpec spec;
@@ -163,6 +164,13 @@ struct Fixture {
         return refusal(replaying(engine_text(trajectory, {"digest", "scene_sha256"})), fall);
     }
 };
+
+// The impulse engine's run of `scene` with other events (kept in time order by the caller).
+Trajectory trajectory_with_events(const Scene& scene, std::vector<TrajectoryEvent> events) {
+    Trajectory trajectory = run_scene(scene);
+    trajectory.events = std::move(events);
+    return trajectory;
+}
 
 } // namespace
 
@@ -406,6 +414,57 @@ TEST_CASE("an engine's output is read as strictly as a scene", "[engine-protocol
         CHECK(f.refusal_of([&](Trajectory& t) { t.events = {ghost}; }) ==
               output + " events[0].b: is the same body as a; an event is between two");
     }
+}
+
+TEST_CASE("an engine's events and optional keys are checked against the scene",
+          "[engine-protocol]") {
+    Fixture f;
+    const std::string output = "engine 'fake-engine' on " + f.fall.file + ": output";
+    TrajectoryEvent hit;
+    hit.t = 0.05;
+    hit.a = "ball";
+    hit.b = "floor";
+    hit.normal[1] = 1.0;
+    hit.impulse = 2.0;
+    const auto with_events = [&](std::vector<TrajectoryEvent> events) {
+        return f.refusal_of([&](Trajectory& t) { t.events = events; });
+    };
+    TrajectoryEvent bad = hit;
+    bad.normal[0] = 0.1; // length sqrt(1.01)
+    CHECK(with_events({bad}).rfind(output + " events[0].normal: must be a unit vector", 0) == 0);
+    bad = hit;
+    bad.impulse = -1e-9;
+    CHECK(with_events({bad}) == output + " events[0].impulse: is the normal impulse's magnitude, "
+                                         "must be >= 0, got -1e-09");
+    bad = hit;
+    bad.t = 0.2;
+    CHECK(with_events({bad}) == output + " events[0].t: must lie in the run, from 0 to 0.1 s, "
+                                         "got 0.2");
+    bad.t = 0.04;
+    CHECK(with_events({hit, bad}) == output + " events[1].t: is before the previous event's "
+                                              "(0.05); events are in time order");
+    // The same two events in order are a valid run.
+    bad.t = 0.05;
+    EngineRun run = run_engine(
+        f.replaying(engine_text(trajectory_with_events(f.fall, {hit, bad}), {"digest"})), f.fall);
+    CHECK(run.trajectory.events.size() == 2);
+
+    const Trajectory plain = run_scene(f.fall);
+    const auto with_line = [&](const std::string& line) {
+        std::string text = engine_text(plain, {"digest", "scene_sha256", "scene", "solver"});
+        text.insert(text.find('\n') + 1, "  " + line + ",\n");
+        return refusal(f.replaying(text), f.fall);
+    };
+    CHECK(with_line(R"("scene": "drop")") ==
+          output + " scene: must be the scene's name \"fall\", got \"drop\"");
+    CHECK(with_line(R"("solver": {"overrides": ["dt"]})")
+              .rfind(output + " solver.overrides: is the harness's key", 0) == 0);
+    CHECK(with_line(R"("solver": {"substeps": [1]})") ==
+          output + " solver.substeps: must be a string, a number or a boolean, got an array");
+    CHECK(with_line(R"("cost": {"seconds": -1})") ==
+          output + " cost.seconds: must be >= 0, got -1");
+    CHECK(with_line(R"("cost": {"seconds": 1, "steps": 1.5})") ==
+          output + " cost.steps: must be a whole number >= 0, got 1.5");
 }
 
 TEST_CASE("an engine's message is its last non-empty line, printable and short",

@@ -172,19 +172,11 @@ void check_frames(const StreamedDocument& document, std::size_t columns, const S
     }
 }
 
-bool names_a_body(const Scene& scene, const std::string& name) {
-    for (const SceneBody& body : scene.bodies) {
-        if (body.name == name) {
-            return true;
-        }
-    }
-    return false;
-}
-
-void check_event(const TrajectoryEvent& e, const std::string& path, const Scene& scene, double end,
-                 double previous) {
+// `end`: the run's last time, steps dt (or the duration, when later).
+void check_event(const TrajectoryEvent& e, const std::string& path,
+                 const std::set<std::string>& bodies, double end, double slack, double previous) {
     for (const auto& [key, name] : {std::pair{"a", &e.a}, {"b", &e.b}}) {
-        if (!names_a_body(scene, *name)) {
+        if (bodies.count(*name) == 0) {
             fail(json_member_path(path, key),
                  "no body of the scene is named " + Json(*name).dump());
         }
@@ -202,8 +194,8 @@ void check_event(const TrajectoryEvent& e, const std::string& path, const Scene&
              "is the normal impulse's magnitude, must be >= 0, got " + format_double(e.impulse));
     }
     const std::string t = json_member_path(path, "t");
-    if (!(e.t >= 0.0 && e.t <= end)) {
-        fail(t, "must lie in [0, " + format_double(end) + "] (the run's time), got " +
+    if (!(e.t >= 0.0 && e.t <= end + slack)) {
+        fail(t, "must lie in the run, from 0 to " + format_double(end) + " s, got " +
                     format_double(e.t));
     }
     if (e.t < previous) {
@@ -217,11 +209,16 @@ void check_events(const StreamedDocument& document, const Scene& scene) {
         throw *document.first_bad_event;
     }
     const double last_frame = static_cast<double>(step_count(scene)) * scene.dt;
-    const double end = std::max(scene.duration, last_frame) + time_slack * scene.dt;
+    const double end = std::max(scene.duration, last_frame);
+    std::set<std::string> bodies; // a gas has thousands, and a run many events
+    for (const SceneBody& body : scene.bodies) {
+        bodies.insert(body.name);
+    }
     double previous = 0.0;
     for (std::size_t i = 0; i < document.events.size(); ++i) {
         const TrajectoryEvent& e = document.events[i];
-        check_event(e, json_element_path("events", i), scene, end, previous);
+        check_event(e, json_element_path("events", i), bodies, end, time_slack * scene.dt,
+                    previous);
         previous = e.t;
     }
 }

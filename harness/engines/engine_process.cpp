@@ -8,8 +8,10 @@
 
 #include "input_error.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstring>
 #include <fcntl.h>
@@ -36,6 +38,9 @@ using Clock = std::chrono::steady_clock;
 // process that left the group can still hold them).
 constexpr int poll_slice_ms = 10;
 constexpr int drain_wait_ms = 100;
+// However much such a process writes, the drain stops after this long.
+constexpr auto longest_drain = std::chrono::seconds(1);
+constexpr double max_time_limit = 1e9;
 
 [[noreturn]] void fail_system(const std::string& what) {
     throw std::system_error(errno, std::generic_category(), what);
@@ -138,9 +143,11 @@ class Run {
     // Waits for the engine to exit, reading its pipes, killing its group at
     // the time limit or the output limit; then kills and reaps the group.
     ProcessResult finish(Clock::time_point start) {
+        // Clamped so that the conversion cannot overflow: a limit of 30 years is none.
+        const double limit = std::clamp(request_.time_limit, 0.0, max_time_limit);
         const Clock::time_point deadline =
             start + std::chrono::duration_cast<Clock::duration>(
-                        std::chrono::duration<double>(request_.time_limit));
+                        std::chrono::duration<double>(std::isnan(limit) ? 0.0 : limit));
         while (!exited()) {
             const auto left =
                 std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
@@ -239,7 +246,8 @@ class Run {
     // What the pipes still hold; only a process outside the group can keep
     // them open now, and it is not waited for.
     void drain() {
-        while ((out_.open() || err_.open()) && !result_.overflowed) {
+        const Clock::time_point end = Clock::now() + longest_drain;
+        while ((out_.open() || err_.open()) && !result_.overflowed && Clock::now() < end) {
             pollfd fds[2];
             nfds_t count = 0;
             for (Reader* reader : {&out_, &err_}) {
