@@ -34,7 +34,8 @@ namespace fs = std::filesystem;
 namespace {
 
 const fs::path source_dir = IMPULSE_SOURCE_DIR;
-const std::string fake_engine = std::string(IMPULSE_TEST_ENGINES_DIR) + "/fake_engine.py";
+const std::string engines_dir = IMPULSE_TEST_ENGINES_DIR;
+const std::string fake_engine = engines_dir + "/fake_engine.py";
 const std::string engine_name = "fake-engine";
 
 bool same_bits(double a, double b) {
@@ -144,6 +145,14 @@ bool process_gone(const std::string& pid_text) {
     const pid_t pid = static_cast<pid_t>(std::stol(pid_text));
     return ::kill(pid, 0) == -1 && errno == ESRCH;
 }
+
+// IMPULSE_MAX_TRAJECTORY_MIB for one scope, removed however the scope ends.
+struct LimitMib {
+    explicit LimitMib(const char* mib) { ::setenv("IMPULSE_MAX_TRAJECTORY_MIB", mib, 1); }
+    ~LimitMib() { ::unsetenv("IMPULSE_MAX_TRAJECTORY_MIB"); }
+    LimitMib(const LimitMib&) = delete;
+    LimitMib& operator=(const LimitMib&) = delete;
+};
 
 struct Fixture {
     TempDir temp;
@@ -298,7 +307,11 @@ TEST_CASE("an engine that computes the scene it is given", "[engine-protocol]") 
     }
     SECTION("a child left holding standard output open does not hang the run") {
         const std::string pid_file = (f.temp.dir / "child.pid").string();
-        const EngineRun run = run_engine(fake({"leave-child", pid_file}), f.fall);
+        spit(f.temp.dir / "replay.json", engine_text(run_scene(f.fall), {"digest"}));
+        EngineSpec engine = fake({});
+        engine.command = {"sh", engines_dir + "/leave_child.sh", pid_file,
+                          (f.temp.dir / "replay.json").string()};
+        const EngineRun run = run_engine(engine, f.fall);
         CHECK(run.trajectory.frames.size() == 11);
         CHECK(process_gone(slurp(pid_file)));
     }
@@ -324,15 +337,16 @@ TEST_CASE("an engine that fails is one sentence naming engine, scene and message
     }
     SECTION("a hang is killed at the time limit with its whole process group") {
         const std::string pid_file = (f.temp.dir / "grandchild.pid").string();
-        CHECK(refusal(fake({"hang", pid_file}, 1.0), f.fall) ==
+        EngineSpec engine = fake({}, 1.0);
+        engine.command = {"sh", engines_dir + "/hang.sh", pid_file};
+        CHECK(refusal(engine, f.fall) ==
               failed + "did not finish within 1 s; its process group was killed: (nothing on "
                        "standard error)");
         CHECK(process_gone(slurp(pid_file)));
     }
     SECTION("more output than the trajectory limit") {
-        ::setenv("IMPULSE_MAX_TRAJECTORY_MIB", "1", 1);
+        const LimitMib one_mib("1");
         const std::string why = refusal(fake({"flood", "2"}), f.fall);
-        ::unsetenv("IMPULSE_MAX_TRAJECTORY_MIB");
         CHECK(why.rfind(failed + "wrote more than 1 MiB", 0) == 0);
         CHECK(why.find("its process group was killed") != std::string::npos);
     }
@@ -465,6 +479,27 @@ TEST_CASE("an engine's events and optional keys are checked against the scene",
           output + " cost.seconds: must be >= 0, got -1");
     CHECK(with_line(R"("cost": {"seconds": 1, "steps": 1.5})") ==
           output + " cost.steps: must be a whole number >= 0, got 1.5");
+}
+
+TEST_CASE("a process runs in its folder, its output whole and its errors' tail kept",
+          "[engine-protocol]") {
+    TempDir temp;
+    ProcessRequest request;
+    // 200,000 x on standard error, then a last line; the folder on standard output.
+    request.command = {"sh", "-c",
+                       "head -c 200000 /dev/zero | tr '\\0' x >&2; echo >&2; echo last >&2; pwd; "
+                       "exit 7"};
+    request.working_directory = temp.dir.string();
+    request.output_limit = 1024;
+    const ProcessResult result = run_process(request);
+    REQUIRE(!result.not_started);
+    CHECK(result.exit_code == 7);
+    CHECK(!result.signal);
+    CHECK(fs::equivalent(result.output.substr(0, result.output.size() - 1), temp.dir));
+    REQUIRE(result.error_tail.size() == kept_error_bytes);
+    CHECK(result.error_tail.substr(kept_error_bytes - 7) == "x\nlast\n");
+    CHECK(last_line(result.error_tail, 300) == "last");
+    CHECK(result.seconds > 0.0);
 }
 
 TEST_CASE("an engine's message is its last non-empty line, printable and short",

@@ -7,7 +7,6 @@ Usage: fake_engine.py MODE [ARGS...] SCENE   (the harness appends SCENE)
 import json
 import os
 import signal
-import subprocess
 import sys
 import time
 
@@ -73,17 +72,6 @@ def main():
     elif mode == "refuse":
         sys.stderr.write(args[0] + "\n")
         sys.exit(3)
-    elif mode == "hang":  # a grandchild, then never finishes
-        child = subprocess.Popen(["sleep", "1000"])
-        with open(args[0], "w") as f:
-            f.write(str(child.pid))
-        time.sleep(1000)
-    elif mode == "leave-child":  # exits 0, a child still holding stdout open
-        child = subprocess.Popen(["sleep", "1000"])
-        with open(args[0], "w") as f:
-            f.write(str(child.pid))
-        json.dump(fall(scene), sys.stdout)
-        sys.stdout.flush()
     elif mode == "flood":  # writes args[0] MiB of spaces, then waits to be killed
         block = b" " * (1024 * 1024)
         for _ in range(int(args[0])):
