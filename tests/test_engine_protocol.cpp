@@ -380,6 +380,10 @@ TEST_CASE("an engine's output is read as strictly as a scene", "[engine-protocol
     SECTION("garbage and nothing") {
         CHECK(refusal(fake({"garbage"}), f.fall).rfind(output + ": not valid JSON", 0) == 0);
         CHECK(refusal(fake({"empty"}), f.fall).rfind(output + ": is empty", 0) == 0);
+        CHECK(refusal(f.replaying(" [1, 2]"), f.fall) ==
+              output + ": the top level must be a JSON object (a trajectory), got an array");
+        CHECK(refusal(f.replaying("42"), f.fall) ==
+              output + ": the top level must be a JSON object (a trajectory), got 42");
     }
     SECTION("a wrong, a missing and an extra column") {
         const auto columns = [&](std::vector<std::string> names) {
@@ -508,6 +512,13 @@ TEST_CASE("an engine's message is its last non-empty line, printable and short",
     CHECK(last_line("bell\a and \x1b[31mred\n", 300) == "bell? and ?[31mred");
     CHECK(last_line(std::string(400, 'x'), 300) == std::string(300, 'x') + "...");
     CHECK(last_line("", 300).empty());
+    // Cut between characters, never inside one; a byte that is not UTF-8 is shown as \xNN.
+    std::string accents;
+    for (int i = 0; i < 350; ++i) {
+        accents += "\xc3\xa9";
+    }
+    CHECK(last_line(accents, 300) == accents.substr(0, 600) + "...");
+    CHECK(last_line("bad \xff byte", 300) == "bad \\xff byte");
 }
 
 #ifdef IMPULSE_WITH_BOX2D

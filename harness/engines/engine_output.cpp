@@ -81,6 +81,11 @@ StreamedDocument stream_output(const std::string& text, const std::string& label
                            "standard output");
     }
     check_json_text(text, label + ": output");
+    // The stream skips a top-level array without keeping it; say what it was.
+    if (text[text.find_first_not_of(" \t\r\n")] == '[') {
+        throw output_error(label, "",
+                           "the top level must be a JSON object (a trajectory), got an array");
+    }
     const TrajectorySize size = size_of_text(text);
     require_within_trajectory_limit(size, label + ": output", "", "is too large to read");
     try {
