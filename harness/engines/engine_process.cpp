@@ -162,6 +162,7 @@ class Run {
         }
         kill_group(); // the leader is a zombie until reaped, so its group id is still its own
         const int status = reap_leader();
+        reaped_ = true;
         result_.seconds = std::chrono::duration<double>(Clock::now() - start).count();
         reap_group();
         drain();
@@ -169,7 +170,16 @@ class Run {
         return std::move(result_);
     }
 
+    // Should anything above throw before the engine was reaped, it is killed
+    // and reaped here all the same: no run leaves a process or a zombie.
     ~Run() {
+        if (!reaped_) {
+            kill_group();
+            int status = 0;
+            while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+            }
+            reap_group();
+        }
         out_.close();
         err_.close();
     }
@@ -284,6 +294,7 @@ class Run {
     Reader out_;
     Reader err_;
     ProcessResult result_;
+    bool reaped_ = false;
 };
 
 } // namespace
