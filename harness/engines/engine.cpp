@@ -1,10 +1,164 @@
+// run_engine: the one way the layers above get a trajectory, from this
+// engine, from Box2D, or from any program that speaks the engine protocol
+// (docs/engine-protocol.md).
 #include "engine.h"
 
+#include "engine_output.h"
+#include "engine_process.h"
 #include "input_error.h"
+#include "memory_budget.h"
+#include "number_format.h"
+#include "record.h"
+#include "scene_writer.h"
+#ifdef IMPULSE_WITH_BOX2D
+#include "box2d_simulator.h"
+#include "single_precision.h"
+#endif
 
+#include <cerrno>
 #include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <memory>
 
 namespace impulse::harness {
+
+namespace {
+
+// The exit code by which an engine refuses a scene it cannot model.
+constexpr int unsupported_exit_code = 3;
+// An engine's message is its last non-empty line on standard error, cut to this.
+constexpr std::size_t message_chars = 300;
+
+EngineRun run_box2d(const Scene& scene, const Overrides& overrides) {
+#ifdef IMPULSE_WITH_BOX2D
+    const Scene effective = with_overrides(scene, overrides);
+    // A scene Box2D cannot represent in single precision is refused, as `impulse box2d` does.
+    require_single_precision(effective, "Box2D",
+                             effective.dt / static_cast<double>(effective.box2d.substeps));
+    EngineRun result;
+    const std::unique_ptr<Simulator> simulator = make_box2d_simulator(effective, result.warnings);
+    result.trajectory = record(*simulator, effective);
+    const std::string used = overrides_list(overrides);
+    if (!used.empty()) {
+        result.trajectory.solver.emplace_back("overrides", used);
+    }
+    return result;
+#else
+    (void)overrides;
+    throw InputError(scene.file, "",
+                     "engine 'box2d' cannot run it: this build has no Box2D (configured with "
+                     "IMPULSE_WITH_BOX2D=OFF); install libbox2d-dev and configure with "
+                     "-DIMPULSE_WITH_BOX2D=ON to use it");
+#endif
+}
+
+// A private folder for the scene the engine reads (mkdtemp: mode 0700, a
+// name no one else has), removed with what it holds however the run ends.
+class PrivateFolder {
+  public:
+    PrivateFolder() {
+        std::string pattern =
+            (std::filesystem::temp_directory_path() / "impulse-engine-XXXXXX").string();
+        if (::mkdtemp(pattern.data()) == nullptr) {
+            throw InputError(pattern, "",
+                             std::string("cannot create a folder for the engine's scene: ") +
+                                 std::strerror(errno));
+        }
+        path_ = std::filesystem::absolute(pattern);
+    }
+    ~PrivateFolder() {
+        std::error_code ignored;
+        std::filesystem::remove_all(path_, ignored);
+    }
+    PrivateFolder(const PrivateFolder&) = delete;
+    PrivateFolder& operator=(const PrivateFolder&) = delete;
+    const std::filesystem::path& path() const { return path_; }
+
+  private:
+    std::filesystem::path path_;
+};
+
+std::string write_scene_file(const std::filesystem::path& folder, const Scene& scene) {
+    const std::string path = (folder / (scene.name + ".json")).string();
+    std::ofstream out(path, std::ios::binary);
+    out << write_normalized_scene(scene);
+    out.close();
+    if (!out) {
+        throw InputError(path, "",
+                         "cannot be written for the engine: " + std::string(std::strerror(errno)));
+    }
+    return path;
+}
+
+// How the process ended when it did not end with exit 0 or 3, and its message.
+std::string failure_reason(const ProcessResult& process, const EngineSpec& engine) {
+    std::string reason;
+    if (process.timed_out) {
+        reason = "did not finish within " + format_double(engine.time_limit) +
+                 " s; its process group was killed";
+    } else if (process.overflowed) {
+        reason = "wrote more than " + trajectory_limit_text() +
+                 " on standard output; its process group was killed";
+    } else if (process.signal) {
+        reason = "signal " + std::to_string(*process.signal) + " (" +
+                 std::string(::strsignal(*process.signal)) + ")";
+    } else {
+        reason = "exit status " + std::to_string(process.exit_code.value_or(-1));
+    }
+    const std::string message = last_line(process.error_tail, message_chars);
+    return reason + ": " + (message.empty() ? "(nothing on standard error)" : message);
+}
+
+std::string failed_label(const EngineSpec& engine, const Scene& scene) {
+    return "engine '" + engine.name + "' failed on " + scene.file;
+}
+
+ProcessResult run_command(const EngineSpec& engine, const Scene& received, const Scene& scene) {
+    PrivateFolder folder;
+    ProcessRequest request;
+    request.command = engine.command;
+    request.command.push_back(write_scene_file(folder.path(), received));
+    request.working_directory = engine.working_directory;
+    request.time_limit = engine.time_limit;
+    request.output_limit = static_cast<std::size_t>(trajectory_limit_bytes());
+    ProcessResult process = run_process(request);
+    if (process.not_started) {
+        const std::string origin =
+            engine.origin.empty() ? "" : " (the command of " + engine.origin + ")";
+        throw InputError(failed_label(engine, scene), "", *process.not_started + origin);
+    }
+    return process;
+}
+
+// Tunnelling is not refused here as run_scene does: whether a body passes
+// through another is this engine's property, which the gate is there to see.
+EngineRun run_external(const EngineSpec& engine, const Scene& scene, const Overrides& overrides) {
+    const Scene received = with_overrides(scene, overrides);
+    const ProcessResult process = run_command(engine, received, scene);
+    EngineRun result;
+    result.seconds = process.seconds;
+    if (process.exit_code == unsupported_exit_code) {
+        result.outcome = EngineRun::Outcome::unsupported;
+        result.message = last_line(process.error_tail, message_chars);
+        if (result.message.empty()) {
+            result.message = "(the engine gave no reason on standard error)";
+        }
+        return result;
+    }
+    if (process.exit_code != 0) {
+        throw InputError(failed_label(engine, scene), "", failure_reason(process, engine));
+    }
+    EngineOutput output = read_engine_output(
+        process.output, OutputContext{engine.name, &scene, &received, overrides_list(overrides)});
+    result.trajectory = std::move(output.trajectory);
+    result.cost = output.cost;
+    return result;
+}
+
+} // namespace
 
 EngineSpec impulse_engine() {
     EngineSpec spec;
@@ -28,9 +182,11 @@ EngineRun run_engine(const EngineSpec& engine, const Scene& scene, const Overrid
         result.trajectory = run_scene(scene, overrides);
         break;
     case EngineSpec::Kind::box2d:
+        result = run_box2d(scene, overrides);
+        break;
     case EngineSpec::Kind::external:
-        // Filled in by the protocol runner (external_engine.cpp).
-        throw InputError(scene.file, "", "engine '" + engine.name + "' cannot be run yet");
+        // The process's own wall time, measured around it.
+        return run_external(engine, scene, overrides);
     }
     result.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

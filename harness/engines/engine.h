@@ -49,6 +49,8 @@ struct EngineRun {
     std::string message;            // unsupported: the engine's sentence
     std::optional<EngineCost> cost; // when the engine reported one
     double seconds = 0.0;           // wall time of the run (the process, for external)
+    // box2d: one sentence per body whose speed hits Box2D's per-step clamp.
+    std::vector<std::string> warnings;
 };
 
 EngineSpec impulse_engine();

@@ -85,6 +85,7 @@ std::string printable_path(const std::string& path) {
 
 InputError::InputError(const std::string& file, const std::string& json_path,
                        const std::string& message)
-    : std::runtime_error(render(file, json_path, message)) {}
+    : std::runtime_error(render(file, json_path, message)), json_path_(json_path),
+      message_(message) {}
 
 } // namespace impulse::harness

@@ -17,6 +17,15 @@ class InputError : public std::runtime_error {
     // Renders "FILE: PATH: MESSAGE" (or "FILE: MESSAGE" when path is empty),
     // FILE through printable_path().
     InputError(const std::string& file, const std::string& json_path, const std::string& message);
+
+    // The parts, for a caller that names the input its own way (an engine's
+    // output is named by the engine and the scene, not by a file).
+    const std::string& json_path() const { return json_path_; }
+    const std::string& message() const { return message_; }
+
+  private:
+    std::string json_path_;
+    std::string message_;
 };
 
 } // namespace impulse::harness

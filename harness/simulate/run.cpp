@@ -33,11 +33,7 @@ Scene with_overrides(Scene scene, const Overrides& overrides) {
     return scene;
 }
 
-Trajectory run_scene(const Scene& scene, const Overrides& overrides) {
-    const Scene effective = with_overrides(scene, overrides);
-    refuse_tunnelling(effective); // a tunnel would pass unseen: refused, not run
-    std::unique_ptr<Simulator> simulator = make_impulse_simulator(effective);
-    Trajectory trajectory = record(*simulator, effective);
+std::string overrides_list(const Overrides& overrides) {
     std::string used;
     for (const auto& [key, given] : {std::pair{"dt", overrides.dt.has_value()},
                                      {"integrator", overrides.integrator.has_value()},
@@ -46,8 +42,17 @@ Trajectory run_scene(const Scene& scene, const Overrides& overrides) {
             used += std::string(used.empty() ? "" : ", ") + "\"" + key + "\"";
         }
     }
+    return used.empty() ? used : "[" + used + "]";
+}
+
+Trajectory run_scene(const Scene& scene, const Overrides& overrides) {
+    const Scene effective = with_overrides(scene, overrides);
+    refuse_tunnelling(effective); // a tunnel would pass unseen: refused, not run
+    std::unique_ptr<Simulator> simulator = make_impulse_simulator(effective);
+    Trajectory trajectory = record(*simulator, effective);
+    const std::string used = overrides_list(overrides);
     if (!used.empty()) {
-        trajectory.solver.emplace_back("overrides", "[" + used + "]");
+        trajectory.solver.emplace_back("overrides", used);
     }
     return trajectory;
 }

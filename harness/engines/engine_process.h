@@ -1,0 +1,46 @@
+// Running an engine's command as the protocol says (docs/engine-protocol.md,
+// "One run"): in its own process group, standard input empty, standard output
+// and error read without ever blocking on a pipe, within a time limit and a
+// size limit, and nothing left behind: the process is reaped and whatever it
+// left running in its group is killed.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace impulse::harness {
+
+struct ProcessRequest {
+    std::vector<std::string> command; // program (looked up in PATH without a '/') and arguments
+    std::string working_directory = ".";
+    double time_limit = 60.0;     // seconds of wall time before the group is killed
+    std::size_t output_limit = 0; // bytes of standard output before the group is killed
+};
+
+// Standard error is kept to its last this many bytes.
+inline constexpr std::size_t kept_error_bytes = 64 * 1024;
+
+struct ProcessResult {
+    // Set when the command could not be started at all ("cannot start
+    // 'engine/run': No such file or directory"); nothing else is then set.
+    std::optional<std::string> not_started;
+    std::optional<int> exit_code; // when it exited by itself
+    std::optional<int> signal;    // when a signal ended it (not the harness's kill)
+    bool timed_out = false;       // the time limit passed; the group was killed
+    bool overflowed = false;      // it wrote more than output_limit; the group was killed
+    std::string output;           // standard output (at most output_limit bytes)
+    std::string error_tail;       // the last kept_error_bytes of standard error
+    double seconds = 0.0;         // wall time from start to reaping
+};
+
+// Runs request.command; never throws for what the process does, only for a
+// failure of this process's own (pipes, memory).
+ProcessResult run_process(const ProcessRequest& request);
+
+// The last non-empty line of `text`, control characters replaced by '?' and
+// cut to `max_chars` characters (with "..." when cut): an engine's message.
+std::string last_line(const std::string& text, std::size_t max_chars);
+
+} // namespace impulse::harness
