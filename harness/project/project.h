@@ -41,8 +41,9 @@ struct Project {
 // The implicit project rooted at `root`.
 Project implicit_project(const std::string& root);
 
-// Reads a project file strictly: an unknown key, a duplicate key, a wrong type
-// or a bad value throws InputError naming the file and the JSON path.
+// Reads a project file strictly: an unknown key, a duplicate key, a wrong type,
+// a bad value or a scenes entry that matches nothing throws InputError naming
+// the file and the JSON path.
 Project load_project(const std::string& file);
 Project parse_project(const std::string& text, const std::string& file, const std::string& root);
 

@@ -203,9 +203,13 @@ Project parse_project(const std::string& text, const std::string& file, const st
 
 Project load_project(const std::string& file) {
     const std::string root = fs::path(file).parent_path().string();
-    return parse_project(
-        read_file(file, max_project_bytes, "a project file is a few hundred bytes"), file,
-        root.empty() ? "." : root);
+    Project project =
+        parse_project(read_file(file, max_project_bytes, "a project file is a few hundred bytes"),
+                      file, root.empty() ? "." : root);
+    // Every verb, even one that names its scene by path, refuses a project
+    // whose scenes entry matches nothing: the mistake is said where it is made.
+    project_scenes(project);
+    return project;
 }
 
 } // namespace impulse::harness
