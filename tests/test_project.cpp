@@ -222,14 +222,17 @@ TEST_CASE("Hints name the project's regen command", "[project]") {
     CHECK(has(run_tool_in(plain.dir, {"check"}).out, "bless it with impulse regen drop-box"));
 }
 
-TEST_CASE("Every mistake in a project file is exit 2 with the file and the JSON path, and "
-          "nothing is written",
-          "[project]") {
-    struct Bad {
-        std::string what, json, path, words;
-    };
+namespace {
+
+// A project file with one mistake: what it is, the file's text, and the
+// JSON path and words of the sentence that refuses it.
+struct BadProject {
+    std::string what, json, path, words;
+};
+
+std::vector<BadProject> bad_projects() {
     const std::string engines = R"("scenes": ["scenes"], "engines": )";
-    const std::vector<Bad> cases = {
+    return {
         {"an unknown key", project_with(R"("scenes": ["scenes"], "golden": "g")"), "golden",
          "unknown key (did you mean goldens?)"},
         {"another schema", R"({"schema": "impulse/project@2", "scenes": ["scenes"]})", "schema",
@@ -286,7 +289,14 @@ TEST_CASE("Every mistake in a project file is exit 2 with the file and the JSON 
         {"an empty regen", project_with(R"("scenes": ["scenes"], "regen": "")"), "regen",
          "must not be empty"},
     };
-    for (const Bad& bad : cases) {
+}
+
+} // namespace
+
+TEST_CASE("Every mistake in a project file is exit 2 with the file and the JSON path, and "
+          "nothing is written",
+          "[project]") {
+    for (const BadProject& bad : bad_projects()) {
         INFO("case: " << bad.what);
         ProjectDir p(bad.json, {{"scenes", "drop-box"}});
         fs::create_directories(p.dir / "sub");
