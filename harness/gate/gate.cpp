@@ -1,11 +1,11 @@
 #include "gate.h"
 
 #include "atomic_file.h"
+#include "engine.h"
 #include "golden_settings.h"
 #include "input_error.h"
 #include "number_format.h"
 #include "parallel_check.h"
-#include "run.h"
 #include "scene_names.h"
 
 #include <algorithm>

@@ -141,8 +141,13 @@ std::vector<std::string> unreferenced_goldens(const Project& project) {
 }
 
 void require_project_scene(const Project& project, const std::string& scene_path) {
+    const std::vector<std::string> scenes = project_scenes(project);
+    // A scene from the list itself is the common case: no file system calls.
+    if (std::find(scenes.begin(), scenes.end(), scene_path) != scenes.end()) {
+        return;
+    }
     const std::string wanted = absolute_path(scene_path);
-    for (const std::string& path : project_scenes(project)) {
+    for (const std::string& path : scenes) {
         if (absolute_path(path) == wanted) {
             return;
         }
