@@ -366,3 +366,33 @@ TEST_CASE("An engine that refuses a scene makes a SKIPPED row and check still pa
     CHECK(has(failed.out, "refuser"));
     CHECK(has(failed.out, "segfault in narrow phase"));
 }
+
+TEST_CASE("run and render take the project's first engine or --engine NAME", "[project]") {
+    ProjectDir p(project_with(R"("scenes": ["scenes"],
+                                 "engines": [{"name": "first", "builtin": "impulse"},
+                                             {"name": "second", "builtin": "impulse"}])"),
+                 {{"scenes", "drop-box"}});
+    fs::create_directories(p.dir / "sub");
+    require_exit(run_tool_in(p.dir, {"bless"}), 0);
+    // run writes what bless wrote as the first engine's golden.
+    const Outcome ran = run_tool_in(p.dir / "sub", {"run", "../scenes/drop-box.json"});
+    require_exit(ran, 0);
+    CHECK(ran.out == slurp(p.dir / "goldens" / "first" / "drop-box.json"));
+    const Outcome second =
+        run_tool_in(p.dir / "sub", {"run", "../scenes/drop-box.json", "--engine", "second"});
+    require_exit(second, 0);
+    CHECK(second.out == slurp(p.dir / "goldens" / "second" / "drop-box.json"));
+
+    for (const std::string& verb : {std::string("run"), std::string("render")}) {
+        const Outcome unknown =
+            run_tool_in(p.dir, {verb, "scenes/drop-box.json", "--engine", "third"});
+        require_exit(unknown, 2);
+        CHECK(has(unknown.err, "impulse.json: engines: no engine is named 'third' (--engine)"));
+        CHECK(unknown.out.empty());
+    }
+    // A golden drawn from a subfolder finds its scene's shapes in the project.
+    const Outcome drawn = run_tool_in(p.dir / "sub", {"render", "../goldens/first/drop-box.json"});
+    require_exit(drawn, 0);
+    CHECK(has(drawn.out, "<svg"));
+    CHECK_FALSE(has(drawn.err, "drawing paths, contact points and normals only"));
+}
