@@ -1,8 +1,10 @@
-// `impulse bless [SCENE...]`: write goldens. scripts/regen-goldens calls this.
+// `impulse bless [SCENE...]` and `impulse regen [SCENE...]`: write goldens.
+// regen is the verb hints name and scripts/regen-goldens calls; both do the same.
 #include "cli.h"
 #include "gate.h"
 #include "input_error.h"
 #include "progress.h"
+#include "project_options.h"
 
 #include <cstdlib>
 #include <filesystem>
@@ -12,16 +14,24 @@ namespace impulse::harness::cli {
 
 namespace {
 
-constexpr const char* bless_help = R"(usage: impulse bless [SCENE...] [--root DIR] [--prune]
+constexpr const char* bless_help =
+    R"(usage: impulse bless [SCENE...] [--root DIR] [--engine NAME] [--prune]
 
-Runs scenes (every canonical scene when none is named) and writes their goldens
-to ROOT/goldens/NAME.json: atomically (temporary file, then rename), and only
-when the bytes change, so blessing the same physics twice changes nothing. A
-scene that breaks its own declared expectations is not blessed. Prints what was
-new, changed (and what moved, by how much), unchanged and removed.
+Runs scenes (every scene of the project when none is named) in the project's
+engines and writes their goldens to GOLDENS/NAME.json (GOLDENS/ENGINE/NAME.json
+when the project has several engines): atomically (temporary file, then
+rename), and only when the bytes change, so blessing the same physics twice
+changes nothing. A scene that breaks its own declared expectations is not
+blessed; one an engine refuses as unsupported is skipped; a scene file outside
+the project's scenes is refused (its golden would be unreferenced). Prints what
+was new, changed (and what moved, by how much), unchanged and removed.
+'impulse regen' does the same.
 
-  --root DIR   where harness/scenes/ and goldens/ are (default: .)
-  --prune      delete goldens whose scene no longer exists
+  --root DIR      the project's folder: DIR/impulse.json, or without one
+                  DIR/harness/scenes/ and DIR/goldens/ (default: the first
+                  impulse.json found from the current folder upwards, else .)
+  --engine NAME   only the project's engine NAME
+  --prune         delete goldens whose scene no longer exists
   --quiet      no progress bar (drawn on standard error only when that is a
                terminal, after about a second of work)
 
@@ -30,106 +40,163 @@ writes goldens. Exit: 0 done, 1 a scene was refused, 2 bad input or a golden
 that could not be written.
 )";
 
+constexpr const char* regen_help =
+    R"(usage: impulse regen [SCENE...] [--engine NAME] [--prune] [--root DIR]
+
+Regenerates the goldens of the project found from the current folder (the
+first impulse.json upwards, as git finds .git; --root DIR names it): runs the
+named scenes (every scene of the project when none is named) in the project's
+engines and writes their goldens, exactly as 'impulse bless' does, printing
+what is new, changed (what moved, by how much), unchanged and removed. SCENE
+paths are relative to the current folder. This is the command the gate's hints
+name (the project file's "regen"), after an intended physics change.
+
+  --engine NAME   only the project's engine NAME
+  --prune         delete goldens whose scene no longer exists
+  --root DIR      the project's folder
+  --quiet         no progress bar
+
+Refused in CI mode. Exit: 0 done, 1 a scene was refused (it breaks its own
+expectations), 2 bad input or a golden that could not be written.
+)";
+
 // One line per golden (and what moved, for a changed one), flushed so the
-// progress bar can be drawn after it.
-void report(const Blessing& b, std::ostream& out) {
+// progress bar can be drawn after it. `name` carries the engine when there
+// are several.
+void report(const Blessing& b, const std::string& name, std::ostream& out) {
     switch (b.outcome) {
     case Blessing::Outcome::created:
-        out << "  new        " << b.name << " -> " << printable_path(b.golden_file) << "\n";
+        out << "  new        " << name << " -> " << printable_path(b.golden_file) << "\n";
         break;
     case Blessing::Outcome::changed:
-        out << "  changed    " << b.name << " -> " << printable_path(b.golden_file) << "\n"
+        out << "  changed    " << name << " -> " << printable_path(b.golden_file) << "\n"
             << b.summary;
         break;
     case Blessing::Outcome::unchanged:
-        out << "  unchanged  " << b.name << "\n";
+        out << "  unchanged  " << name << "\n";
         break;
     case Blessing::Outcome::refused:
-        out << "  REFUSED    " << b.name << ": " << b.summary;
+        out << "  REFUSED    " << name << ": " << b.summary;
         break;
     case Blessing::Outcome::unwritten:
-        out << "  NOT WRITTEN " << b.name << ": could not write the golden\n";
+        out << "  NOT WRITTEN " << name << ": could not write the golden\n";
+        break;
+    case Blessing::Outcome::skipped:
+        out << "  skipped    " << name << ": " << b.summary << "\n";
         break;
     }
     out.flush();
 }
 
-} // namespace
-
-int bless_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-    const Arguments a = parse_arguments(args, {"--root"}, {"--help", "--prune", "--quiet"});
-    if (a.has_flag("--help")) {
-        out << bless_help;
-        return exit_ok;
-    }
-    if (ci_mode()) {
-        err << "impulse bless: refusing to write goldens in CI mode (CI=" << std::getenv("CI")
-            << "); bless on a developer machine and commit the goldens\n";
-        return exit_bad_input;
-    }
-    GateRoot root;
-    root.root = a.option("--root").value_or(".");
-    std::vector<std::string> paths = scenes_named(root, a.positional);
-
+struct BlessCounts {
     int created = 0, changed = 0, unchanged = 0, refused = 0, removed = 0, broken = 0;
     int unwritten = 0; // a scene that ran fine but whose golden could not be written
-    {                  // the bar lives while scenes run, and is erased before the summary
-        Progress progress("bless", progress_wanted(a.has_flag("--quiet")));
-        progress.set_total(paths.size(), "scenes");
+    int skipped = 0;   // an engine refused the scene's settings
+
+    void add(Blessing::Outcome outcome) {
+        switch (outcome) {
+        case Blessing::Outcome::created:
+            ++created;
+            break;
+        case Blessing::Outcome::changed:
+            ++changed;
+            break;
+        case Blessing::Outcome::unchanged:
+            ++unchanged;
+            break;
+        case Blessing::Outcome::refused:
+            ++refused;
+            break;
+        case Blessing::Outcome::unwritten:
+            ++unwritten;
+            break;
+        case Blessing::Outcome::skipped:
+            ++skipped;
+            break;
+        }
+    }
+};
+
+// Every (engine, scene) pair, with the progress bar erased before returning.
+BlessCounts bless_all(const Project& project, const std::vector<EngineSpec>& engines,
+                      const std::vector<std::string>& paths, bool quiet, std::ostream& out,
+                      std::ostream& err) {
+    BlessCounts counts;
+    Progress progress("bless", progress_wanted(quiet));
+    progress.set_total(paths.size() * engines.size(), "scenes");
+    const bool several = project.engines.size() > 1;
+    for (const EngineSpec& engine : engines) {
         for (const std::string& path : paths) {
             progress.set_item(std::filesystem::path(path).stem().string());
             try {
-                const Blessing b = bless_scene(root, path);
+                const Blessing b = bless_scene(project, engine, path);
                 progress.advance();
-                progress.without_bar([&] { report(b, out); });
-                switch (b.outcome) {
-                case Blessing::Outcome::created:
-                    ++created;
-                    break;
-                case Blessing::Outcome::changed:
-                    ++changed;
-                    break;
-                case Blessing::Outcome::unchanged:
-                    ++unchanged;
-                    break;
-                case Blessing::Outcome::refused:
-                    ++refused;
-                    break;
-                case Blessing::Outcome::unwritten:
-                    ++unwritten;
+                progress.without_bar(
+                    [&] { report(b, several ? engine.name + "/" + b.name : b.name, out); });
+                counts.add(b.outcome);
+                if (b.outcome == Blessing::Outcome::unwritten) {
                     progress.without_bar([&] { err << b.summary << "\n" << std::flush; });
-                    break;
                 }
             } catch (const InputError& e) {
-                ++broken;
+                ++counts.broken;
                 progress.advance();
                 progress.without_bar([&] { err << e.what() << "\n" << std::flush; });
             }
         }
     }
-    for (const std::string& golden : unreferenced_goldens(root)) {
+    return counts;
+}
+
+} // namespace
+
+int write_goldens(const std::string& verb, const std::vector<std::string>& args, std::ostream& out,
+                  std::ostream& err) {
+    const Arguments a =
+        parse_arguments(args, {"--root", "--engine"}, {"--help", "--prune", "--quiet"});
+    if (a.has_flag("--help")) {
+        out << (verb == "regen" ? regen_help : bless_help);
+        return exit_ok;
+    }
+    if (ci_mode()) {
+        err << "impulse " << verb
+            << ": refusing to write goldens in CI mode (CI=" << std::getenv("CI")
+            << "); bless on a developer machine and commit the goldens\n";
+        return exit_bad_input;
+    }
+    const Project project = find_project(a.option("--root"));
+    const std::vector<EngineSpec> engines = engines_chosen(project, a.option("--engine"));
+    const std::vector<std::string> paths = scenes_named(project, a.positional);
+    BlessCounts c = bless_all(project, engines, paths, a.has_flag("--quiet"), out, err);
+    for (const std::string& golden : unreferenced_goldens(project)) {
         if (a.has_flag("--prune")) {
             std::filesystem::remove(golden);
-            ++removed;
+            ++c.removed;
             out << "  removed    " << printable_path(golden) << "\n";
         } else {
             out << "  unreferenced " << printable_path(golden)
                 << " (no scene of that name; --prune deletes it)\n";
         }
     }
-    out << "goldens: " << created << " new, " << changed << " changed, " << unchanged
-        << " unchanged, " << removed << " removed";
-    if (refused > 0) {
-        out << ", " << refused << " refused";
+    out << "goldens: " << c.created << " new, " << c.changed << " changed, " << c.unchanged
+        << " unchanged, " << c.removed << " removed";
+    if (c.refused > 0) {
+        out << ", " << c.refused << " refused";
     }
-    if (broken > 0) {
-        out << ", " << broken << " broken scene" << (broken == 1 ? "" : "s");
+    if (c.skipped > 0) {
+        out << ", " << c.skipped << " skipped (unsupported)";
     }
-    if (unwritten > 0) {
-        out << ", " << unwritten << " could not write the golden";
+    if (c.broken > 0) {
+        out << ", " << c.broken << " broken scene" << (c.broken == 1 ? "" : "s");
+    }
+    if (c.unwritten > 0) {
+        out << ", " << c.unwritten << " could not write the golden";
     }
     out << "\n";
-    return broken > 0 || unwritten > 0 ? exit_bad_input : refused > 0 ? exit_failed : exit_ok;
+    return c.broken > 0 || c.unwritten > 0 ? exit_bad_input : c.refused > 0 ? exit_failed : exit_ok;
+}
+
+int bless_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    return write_goldens("bless", args, out, err);
 }
 
 } // namespace impulse::harness::cli

@@ -5,6 +5,7 @@
 #include "number_format.h"
 #include "output_path.h"
 #include "progress.h"
+#include "project_options.h"
 #include "report.h"
 #include "tolerance.h"
 
@@ -23,13 +24,19 @@ namespace {
 constexpr const char* check_help = R"(usage: impulse check [SCENE...] [options]
 
 The gate: simulates scenes again and compares each with its golden
-(ROOT/goldens/NAME.json), exactly by default: every double bit-identical,
--0.0 and +0.0 told apart. With no SCENE, every canonical scene in
-ROOT/harness/scenes/. A SCENE is a name or a path. Every scene's declared
-expectations are checked too; a scene that breaks one fails even when its
-golden matches.
+(GOLDENS/NAME.json, or GOLDENS/ENGINE/NAME.json when the project has several
+engines), exactly by default: every double bit-identical, -0.0 and +0.0 told
+apart. With no SCENE, every scene of the project (impulse.json's "scenes";
+without a project file, ROOT/harness/scenes/), in every engine of the
+project. A SCENE is a name or a path to one of the project's scenes. Every
+scene's declared expectations are checked too; a scene that breaks one fails
+even when its golden matches. A scene an engine refuses as unsupported is
+SKIPPED: neither a pass nor a failure.
 
-  --root DIR        where harness/scenes/ and goldens/ are (default: .)
+  --root DIR        the project's folder: DIR/impulse.json, or without one
+                    DIR/harness/scenes/ and DIR/goldens/ (default: the first
+                    impulse.json found from the current folder upwards, else .)
+  --engine NAME     only the project's engine NAME
   --tolerance       compare within per-channel tolerances instead of exactly:
                     |new - gold| <= atol + rtol |gold|, or at most `ulp` ULPs apart;
                     from the scene's "tolerance" block and these options
@@ -64,8 +71,15 @@ const char* status_word(SceneCheck::Status status) {
         return "FAILED";
     case SceneCheck::Status::error:
         return "ERROR";
+    case SceneCheck::Status::skipped:
+        return "SKIPPED";
     }
     return "?";
+}
+
+// "ENGINE/NAME" when the project has several engines, else the scene's name.
+std::string row_name(const SceneCheck& check) {
+    return check.engine.empty() ? check.name : check.engine + "/" + check.name;
 }
 
 int parse_count(const std::string& option, const std::string& text, int low) {
@@ -125,9 +139,9 @@ void validate_tolerance_options(const CheckOptions& options) {
 }
 
 // Goldens without a scene: a failed row each in CI mode, a warning otherwise.
-void add_unreferenced_goldens(const GateRoot& root, bool ci, std::vector<SceneCheck>& checks,
+void add_unreferenced_goldens(const Project& project, bool ci, std::vector<SceneCheck>& checks,
                               std::ostream& err) {
-    for (const std::string& golden : unreferenced_goldens(root)) {
+    for (const std::string& golden : unreferenced_goldens(project)) {
         if (ci) {
             SceneCheck orphan;
             orphan.name = std::filesystem::path(golden).stem().string();
@@ -135,12 +149,12 @@ void add_unreferenced_goldens(const GateRoot& root, bool ci, std::vector<SceneCh
             orphan.status = SceneCheck::Status::failed;
             orphan.message = printable_path(golden) +
                              ": unreferenced golden: no canonical scene is named '" + orphan.name +
-                             "'; delete it with scripts/regen-goldens --prune";
+                             "'; delete it with " + project.regen + " --prune";
             checks.push_back(orphan);
         } else {
             err << "warning: " << printable_path(golden)
-                << ": unreferenced golden (no scene of that name); scripts/regen-goldens "
-                   "--prune deletes it, CI fails on it\n";
+                << ": unreferenced golden (no scene of that name); " << project.regen
+                << " --prune deletes it, CI fails on it\n";
         }
     }
 }
@@ -156,16 +170,17 @@ void print_warnings(const std::vector<SceneCheck>& checks, std::ostream& err) {
 
 // check_scenes with the progress bar (scenes done of all, the one running),
 // erased before the table is printed.
-std::vector<SceneCheck> check_with_progress(const GateRoot& root,
+std::vector<SceneCheck> check_with_progress(const Project& project,
+                                            const std::vector<EngineSpec>& engines,
                                             const std::vector<std::string>& paths,
                                             CheckOptions options, bool quiet) {
     Progress progress("check", progress_wanted(quiet));
-    progress.set_total(paths.size(), "scenes");
+    progress.set_total(paths.size() * engines.size(), "scenes");
     options.on_start = [&progress](const std::string& path) {
         progress.set_item(std::filesystem::path(path).stem().string());
     };
     options.on_done = [&progress] { progress.advance(); };
-    return check_scenes(root, paths, options);
+    return check_scenes(project, engines, paths, options);
 }
 
 // The table (one row per scene), the details of each failure, the counts;
@@ -173,13 +188,18 @@ std::vector<SceneCheck> check_with_progress(const GateRoot& root,
 int print_table(std::ostream& out, const std::vector<SceneCheck>& checks) {
     std::size_t width = 4;
     for (const SceneCheck& c : checks) {
-        width = std::max(width, c.name.size());
+        width = std::max(width, row_name(c).size());
     }
-    int passed = 0, failed = 0, errors = 0;
+    int passed = 0, failed = 0, errors = 0, skipped = 0;
     for (const SceneCheck& c : checks) {
+        // SKIPPED is the one word longer than the column: one space still parts it.
         out << "  " << std::left << std::setw(7) << status_word(c.status)
-            << std::setw(static_cast<int>(width) + 2) << printable_path(c.name);
-        if (c.status == SceneCheck::Status::passed) {
+            << (c.status == SceneCheck::Status::skipped ? " " : "")
+            << std::setw(static_cast<int>(width) + 2) << printable_path(row_name(c));
+        if (c.status == SceneCheck::Status::skipped) {
+            ++skipped;
+            out << c.message << "\n";
+        } else if (c.status == SceneCheck::Status::passed) {
             ++passed;
             out << std::fixed << std::setprecision(3) << c.seconds << " s\n";
             out.unsetf(std::ios::fixed);
@@ -191,30 +211,30 @@ int print_table(std::ostream& out, const std::vector<SceneCheck>& checks) {
     for (const SceneCheck& c : checks) {
         if (!c.details.empty()) {
             out << "\n"
-                << printable_path(c.name) << " (" << printable_path(c.scene_file) << " vs "
+                << printable_path(row_name(c)) << " (" << printable_path(c.scene_file) << " vs "
                 << printable_path(c.golden_file) << "):\n"
                 << c.details;
         }
     }
     out << checks.size() << " scene" << (checks.size() == 1 ? "" : "s") << ": " << passed
         << " passed, " << failed << " failed, " << errors << " error" << (errors == 1 ? "" : "s")
-        << "\n";
+        << (skipped > 0 ? ", " + std::to_string(skipped) + " skipped" : "") << "\n";
     return errors > 0 ? exit_bad_input : failed > 0 ? exit_failed : exit_ok;
 }
 
 } // namespace
 
 int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostream& err) {
-    const Arguments a = parse_arguments(
-        normalise_jobs(raw),
-        {"--root", "--atol", "--rtol", "--ulp", "--junit", "--report", "--jobs", "--shard"},
-        {"--help", "--tolerance", "--quiet"});
+    const Arguments a = parse_arguments(normalise_jobs(raw),
+                                        {"--root", "--engine", "--atol", "--rtol", "--ulp",
+                                         "--junit", "--report", "--jobs", "--shard"},
+                                        {"--help", "--tolerance", "--quiet"});
     if (a.has_flag("--help")) {
         out << check_help;
         return exit_ok;
     }
-    GateRoot root;
-    root.root = a.option("--root").value_or(".");
+    const Project project = find_project(a.option("--root"));
+    const std::vector<EngineSpec> engines = engines_chosen(project, a.option("--engine"));
     CheckOptions options;
     options.tolerance_mode = a.has_flag("--tolerance");
     options.atol = a.option("--atol");
@@ -228,7 +248,7 @@ int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostr
         options.jobs = parse_count("--jobs", *jobs, 1);
     }
     // Output paths are refused before any scene runs.
-    const std::vector<std::string> goldens = goldens_folders(root.root);
+    const std::vector<std::string> goldens = protected_folders(project);
     const std::optional<std::string> junit = a.option("--junit");
     if (junit) {
         check_output_file("--junit", *junit, goldens);
@@ -238,7 +258,7 @@ int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostr
     }
     const bool junit_to_stdout = junit && is_standard_output(*junit);
     const bool all = a.positional.empty();
-    std::vector<std::string> paths = scenes_named(root, a.positional);
+    std::vector<std::string> paths = scenes_named(project, a.positional);
     if (const auto spec = a.option("--shard")) {
         const auto [k, n] = parse_shard(*spec);
         paths = shard(paths, k, n);
@@ -247,14 +267,15 @@ int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostr
     // With --junit -, standard output is the XML alone.
     std::ostream& table = junit_to_stdout ? err : out;
     const bool ci = ci_mode();
-    table << "check: " << paths.size() << " scene" << (paths.size() == 1 ? "" : "s") << ", "
+    table << "check: " << paths.size() << " scene" << (paths.size() == 1 ? "" : "s")
+          << (project.engines.size() > 1 ? " in " + engine_names(engines) : "") << ", "
           << (options.tolerance_mode ? "within tolerances" : "exact") << (ci ? ", CI mode" : "")
           << "\n";
     std::vector<SceneCheck> checks =
-        check_with_progress(root, paths, options, a.has_flag("--quiet"));
+        check_with_progress(project, engines, paths, options, a.has_flag("--quiet"));
 
     if (all) {
-        add_unreferenced_goldens(root, ci, checks, err);
+        add_unreferenced_goldens(project, ci, checks, err);
     }
     print_warnings(checks, err);
 

@@ -20,7 +20,10 @@ usage: impulse <verb> [options]
 verbs:
   run SCENE          simulate a scene and write its trajectory
   check [SCENE...]   the gate: simulate scenes and diff them against their goldens
-  bless [SCENE...]   write goldens (scripts/regen-goldens calls this)
+  bless [SCENE...]   write goldens
+  regen [SCENE...]   regenerate the goldens of the project found from here
+                     (the command hints name; bless by another name)
+  init [DIR]         start a project: DIR/impulse.json and one example scene
   diff A B           diff two trajectory files with the rules of check
   box2d [SCENE...]   run scenes in Box2D with friction off and compare observables
   render SCENE|TRAJECTORY
@@ -29,6 +32,11 @@ verbs:
                      solver settings, impulse and Box2D
   stress             numerical stability at the extremes: a matrix of built-in
                      scenes, every invariant's worst value against its bound
+
+The project: the first impulse.json found from the current folder upwards
+(or in --root DIR) says where the scenes and goldens are and which engines
+run them (docs/project-file.md); without one, harness/scenes/ and goldens/
+with the impulse engine.
 
 options:
   --help       this text; 'impulse <verb> --help' describes one verb
@@ -135,6 +143,12 @@ int main(int argc, char** argv) {
         }
         if (verb == "stress") {
             return stress_verb(rest, out, err);
+        }
+        if (verb == "init") {
+            return init_verb(rest, out, err);
+        }
+        if (verb == "regen") {
+            return regen_verb(rest, out, err);
         }
         err << "impulse: unknown verb '" << verb << "'; see 'impulse --help'\n";
         return exit_bad_input;

@@ -54,5 +54,11 @@ int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
 int render_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int stress_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int init_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int regen_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+// bless and regen, one implementation: `verb` picks the help text and names
+// the verb in messages.
+int write_goldens(const std::string& verb, const std::vector<std::string>& args, std::ostream& out,
+                  std::ostream& err);
 
 } // namespace impulse::harness::cli

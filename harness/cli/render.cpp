@@ -3,9 +3,12 @@
 
 #include "atomic_file.h"
 #include "cli.h"
+#include "engine.h"
+#include "gate.h"
 #include "input_error.h"
 #include "output_path.h"
 #include "progress.h"
+#include "project_options.h"
 #include "run.h"
 
 #include <cstddef>
@@ -19,21 +22,25 @@ namespace impulse::harness::cli {
 namespace {
 
 constexpr const char* render_help =
-    R"(usage: impulse render SCENE|TRAJECTORY [--out FILE.svg] [--root DIR]
+    R"(usage: impulse render SCENE|TRAJECTORY [--out FILE.svg] [--root DIR] [--engine NAME]
 
 Draws an SVG picture of the motion: every dynamic body's path, its outline at
 key frames, each collision's contact point and normal, and a legend.
 
 The file's "schema" decides what it is:
-  impulse/scene@1       the scene is simulated (as 'impulse run' would) and drawn
+  impulse/scene@1       the scene is simulated (as 'impulse run' would, in the
+                        project's first engine or --engine NAME) and drawn
   impulse/trajectory@1  the recorded run is drawn; the bodies' shapes come from
-                        ROOT/harness/scenes/NAME.json when that scene is the one
+                        the project's scene NAME when that scene is the one
                         the trajectory was recorded from (same scene_sha256),
                         otherwise only paths, contact points and normals
 
   --out FILE.svg   write the picture here (atomically) instead of standard output
                    (a regular file, never one in goldens/; - is standard output)
-  --root DIR       where harness/scenes/ is (default: the current directory)
+  --root DIR       the project's folder (default: the first impulse.json found
+                   from the current folder upwards; without one, the scenes
+                   are in ./harness/scenes/)
+  --engine NAME    run a scene in the project's engine NAME
   --quiet          no progress bar (drawn on standard error only when that is a
                    terminal, after about a second of work)
 )";
@@ -77,7 +84,8 @@ bool starts_with(const std::string& text, const std::string& prefix) {
 } // namespace
 
 int render_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-    const Arguments a = parse_arguments(args, {"--out", "--root"}, {"--help", "--quiet"});
+    const Arguments a =
+        parse_arguments(args, {"--out", "--root", "--engine"}, {"--help", "--quiet"});
     if (a.has_flag("--help")) {
         out << render_help;
         return exit_ok;
@@ -87,7 +95,9 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
                          std::to_string(a.positional.size()));
     }
     const std::string& input = a.positional.front();
-    const std::vector<std::string> goldens = goldens_folders(a.option("--root").value_or("."));
+    const Project project = find_project(a.option("--root"));
+    const EngineSpec& engine = single_engine(project, a.option("--engine"));
+    const std::vector<std::string> goldens = protected_folders(project);
     if (const auto path = a.option("--out")) {
         check_output_file("--out", *path, goldens);
     }
@@ -107,17 +117,26 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
             err.flush();
         });
         progress->set_item(scene.name);
-        svg = render_svg(scene, run_scene(scene));
+        EngineRun ran = run_engine(engine, scene);
+        if (ran.outcome == EngineRun::Outcome::unsupported) {
+            throw InputError(scene.file, "", "unsupported by " + engine.name + ": " + ran.message);
+        }
+        svg = render_svg(scene, ran.trajectory);
     } else if (schema.empty() || starts_with(schema, "impulse/trajectory@")) {
         // An empty schema here means the text is not JSON: the trajectory
         // reader says where.
         const Trajectory trajectory = read_trajectory(text, input);
-        const std::filesystem::path root = a.option("--root").value_or(".");
-        const std::string scene_file =
-            (root / "harness" / "scenes" / (trajectory.scene + ".json")).string();
-        std::error_code error;
         std::string why_not;
-        if (!std::filesystem::is_regular_file(scene_file, error)) {
+        std::string scene_file;
+        try {
+            scene_file = resolve_scene(project, trajectory.scene);
+        } catch (const InputError& e) {
+            why_not = std::string("the project's scenes cannot be listed (") + e.what() + ")";
+        }
+        std::error_code error;
+        if (!why_not.empty()) {
+            // drawn without shapes, as below
+        } else if (!std::filesystem::is_regular_file(scene_file, error)) {
             why_not = scene_file + " does not exist";
         } else {
             try {

@@ -2,10 +2,13 @@
 #include "run.h"
 
 #include "cli.h"
+#include "engine.h"
 #include "expectations.h"
+#include "input_error.h"
 #include "number_format.h"
 #include "output_path.h"
 #include "progress.h"
+#include "project_options.h"
 
 #include <ostream>
 
@@ -13,13 +16,17 @@ namespace impulse::harness::cli {
 
 namespace {
 constexpr const char* run_help =
-    R"(usage: impulse run SCENE [--out FILE] [--dt S] [--integrator NAME] [--toi-tolerance S] [--quiet]
+    R"(usage: impulse run SCENE [--out FILE] [--engine NAME] [--root DIR] [--dt S] [--integrator NAME] [--toi-tolerance S] [--quiet]
 
-Simulates SCENE (a path to an impulse/scene@1 file) with the impulse engine and
-writes its impulse/trajectory@1 to FILE (atomically) or to standard output.
+Simulates SCENE (a path to an impulse/scene@1 file) in the project's first
+engine (the impulse engine without a project file) and writes its
+impulse/trajectory@1 to FILE (atomically) or to standard output.
 
   --out FILE            write the trajectory here instead of standard output (a
                         regular file, never one in goldens/; - is standard output)
+  --engine NAME         the project's engine NAME instead of its first
+  --root DIR            the project's folder (default: the first impulse.json
+                        found from the current folder upwards)
   --dt S                time step in seconds (overrides the scene's dt)
   --integrator NAME     euler, symplectic-euler, verlet or rk4
   --toi-tolerance S     time-of-impact tolerance in seconds
@@ -28,13 +35,15 @@ writes its impulse/trajectory@1 to FILE (atomically) or to standard output.
 
 Overrides change the physics and are recorded in the trajectory's solver block.
 The scene's declared expectations are checked: exit 1 when one fails (the
-trajectory is still written), 2 for bad input.
+trajectory is still written), 2 for bad input, an engine that fails, or one
+that refuses the scene as unsupported.
 )";
 } // namespace
 
 int run_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-    const Arguments a = parse_arguments(args, {"--out", "--dt", "--integrator", "--toi-tolerance"},
-                                        {"--help", "--quiet"});
+    const Arguments a = parse_arguments(
+        args, {"--out", "--engine", "--root", "--dt", "--integrator", "--toi-tolerance"},
+        {"--help", "--quiet"});
     if (a.has_flag("--help")) {
         out << run_help;
         return exit_ok;
@@ -58,7 +67,9 @@ int run_verb(const std::vector<std::string>& args, std::ostream& out, std::ostre
         overrides.integrator = integrator;
     }
 
-    const std::vector<std::string> goldens = goldens_folders(".");
+    const Project project = find_project(a.option("--root"));
+    const EngineSpec& engine = single_engine(project, a.option("--engine"));
+    const std::vector<std::string> goldens = protected_folders(project);
     if (const auto path = a.option("--out")) {
         check_output_file("--out", *path, goldens);
     }
@@ -68,7 +79,12 @@ int run_verb(const std::vector<std::string>& args, std::ostream& out, std::ostre
     }
     const Trajectory trajectory = [&] {
         const Progress progress("run " + scene.name, progress_wanted(a.has_flag("--quiet")));
-        return run_scene(scene, overrides);
+        EngineRun ran = run_engine(engine, scene, overrides);
+        if (ran.outcome == EngineRun::Outcome::unsupported) {
+            // Nothing to write: the engine does not model what the scene asks.
+            throw InputError(scene.file, "", "unsupported by " + engine.name + ": " + ran.message);
+        }
+        return std::move(ran.trajectory);
     }();
     const std::string text = write_trajectory(trajectory);
     // Nothing that diff, check or render would refuse, on a file or on stdout.

@@ -1,11 +1,12 @@
 #include "gate.h"
 
 #include "atomic_file.h"
+#include "engine.h"
 #include "golden_settings.h"
 #include "input_error.h"
 #include "number_format.h"
 #include "parallel_check.h"
-#include "run.h"
+#include "scene_names.h"
 
 #include <algorithm>
 #include <chrono>
@@ -18,18 +19,6 @@ namespace impulse::harness {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::uint64_t fnv1a(const std::string& text) {
-    std::uint64_t h = 0xcbf29ce484222325ull;
-    for (unsigned char c : text) {
-        h = (h ^ c) * 0x100000001b3ull;
-    }
-    return h;
-}
-
-std::string stem(const std::string& path) {
-    return fs::path(path).stem().string();
-}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -44,45 +33,19 @@ bool entry_exists(const std::string& path) {
     return fs::symlink_status(path, error).type() != fs::file_type::not_found;
 }
 
-std::string lower_case(std::string text) {
-    for (char& c : text) {
-        if (c >= 'A' && c <= 'Z') {
-            c = static_cast<char>(c - 'A' + 'a');
-        }
-    }
-    return text;
-}
-
-const char* case_reason = "differ only in case: on a case-insensitive file system (macOS, "
-                          "Windows) they are one file and their goldens would overwrite each "
-                          "other; rename one";
-
-// Scene files whose names (their goldens' names) differ only in case are
-// refused as a pair. The same name twice is one scene named twice, not a clash.
-void refuse_case_collisions(const std::vector<std::string>& scene_paths) {
-    for (std::size_t i = 0; i < scene_paths.size(); ++i) {
-        for (std::size_t j = i + 1; j < scene_paths.size(); ++j) {
-            const std::string a = stem(scene_paths[i]), b = stem(scene_paths[j]);
-            if (a != b && lower_case(a) == lower_case(b)) {
-                throw InputError(scene_paths[i], "", "and " + scene_paths[j] + " " + case_reason);
-            }
-        }
-    }
-}
-
 // A golden named like the scene but for case (goldens/Drop.json for scene
 // drop) is the scene's golden on a case-insensitive file system and an
 // orphan elsewhere: refused, never blessed over or pruned.
-void refuse_case_variant_golden(const GateRoot& root, const std::string& scene_path,
+void refuse_case_variant_golden(const std::string& golden_folder, const std::string& scene_path,
                                 const std::string& name) {
     std::error_code error;
-    for (fs::directory_iterator it(root.goldens_dir(), error), end; !error && it != end;
+    for (fs::directory_iterator it(golden_folder, error), end; !error && it != end;
          it.increment(error)) {
         const std::string golden_name = it->path().stem().string();
         if (it->path().extension() == ".json" && golden_name != name &&
             lower_case(golden_name) == lower_case(name)) {
             throw InputError(it->path().string(), "",
-                             "and the scene file " + scene_path + " " + case_reason);
+                             "and the scene file " + scene_path + " " + case_clash_reason);
         }
     }
 }
@@ -90,16 +53,38 @@ void refuse_case_variant_golden(const GateRoot& root, const std::string& scene_p
 // A scene's golden is goldens/NAME.json, so a scene file must be NAME.json:
 // otherwise two files (a copy, or one renamed without its name) would write
 // one golden in turn, each blessing losing the other's.
-Scene load_scene_for_golden(const std::string& scene_path) {
+// It must also be one of the project's scenes, or its golden would be unreferenced.
+Scene load_scene_for_golden(const Project& project, const std::string& scene_path) {
     Scene scene = load_scene(scene_path);
-    if (stem(scene_path) != scene.name) {
+    if (scene_stem(scene_path) != scene.name) {
         throw InputError(scene_path, "name",
                          "is \"" + scene.name + "\" but the file is " +
                              fs::path(scene_path).filename().string() +
                              ": a scene's golden is goldens/NAME.json, so its file must be "
                              "NAME.json");
     }
+    require_project_scene(project, scene_path);
     return scene;
+}
+
+// What a hint tells the user to run for one scene: the project's regen
+// command, with --engine when there are several engines.
+std::string regen_command(const Project& project, const EngineSpec& engine,
+                          const std::string& scene_name) {
+    return project.regen + " " + scene_name +
+           (project.engines.size() > 1 ? " --engine " + engine.name : "");
+}
+
+// The engine's trajectory, or nullopt with `message` set when the engine
+// refused the scene's settings.
+std::optional<Trajectory> run_in(const EngineSpec& engine, const Scene& scene,
+                                 std::string& message) {
+    EngineRun run = run_engine(engine, scene);
+    if (run.outcome == EngineRun::Outcome::unsupported) {
+        message = "unsupported by " + engine.name + ": " + run.message;
+        return std::nullopt;
+    }
+    return std::move(run.trajectory);
 }
 
 Tolerances tolerances_for(const Scene& scene, const CheckOptions& options) {
@@ -159,15 +144,15 @@ std::string failed_expectations(const std::vector<ExpectationResult>& results, i
 
 // Fails the check, with one line and the details, for each thing that
 // differs: a stale golden, other settings, the data, a broken expectation.
-void record_verdict(SceneCheck& check) {
+void record_verdict(SceneCheck& check, const std::string& regen) {
     int failed_count = 0;
     const std::string failed = failed_expectations(check.expectations, failed_count);
     std::ostringstream details;
     std::vector<std::string> reasons;
     if (check.stale) {
         reasons.push_back("stale golden: the scene changed since it was blessed; if that was "
-                          "intended, run scripts/regen-goldens " +
-                          check.name);
+                          "intended, run " +
+                          regen);
     }
     const SettingsComparison settings = compare_settings(*check.gold, *check.value);
     check.warnings = settings.notes;
@@ -201,125 +186,38 @@ void record_verdict(SceneCheck& check) {
 
 } // namespace
 
-std::string GateRoot::scenes_dir() const {
-    return (fs::path(root) / "harness" / "scenes").string();
-}
-std::string GateRoot::goldens_dir() const {
-    return (fs::path(root) / "goldens").string();
-}
-std::string GateRoot::golden_path(const std::string& scene_name) const {
-    return (fs::path(goldens_dir()) / (scene_name + ".json")).string();
-}
-
-bool ci_mode() {
-    const char* ci = std::getenv("CI");
-    if (ci == nullptr) {
-        return false;
-    }
-    const std::string value = ci;
-    return !(value.empty() || value == "0" || value == "false");
-}
-
-std::vector<std::string> canonical_scenes(const GateRoot& root) {
-    const std::string dir = root.scenes_dir();
-    std::error_code error;
-    if (!fs::is_directory(dir, error)) {
-        throw InputError(dir, "",
-                         "no scene folder here; run from the repository root or give --root");
-    }
-    // Every NAME.json entry is a scene, whatever it is: one that cannot be
-    // read (a dangling symlink, a folder) is that scene's error when it is
-    // loaded, never skipped, and its golden is never pruned.
-    std::vector<std::string> paths;
-    for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
-        if (entry.path().extension() == ".json") {
-            paths.push_back(entry.path().string());
-        }
-    }
-    std::sort(paths.begin(), paths.end());
-    refuse_case_collisions(paths);
-    return paths;
-}
-
-std::string resolve_scene(const GateRoot& root, const std::string& argument) {
-    std::error_code error;
-    if (fs::is_regular_file(argument, error) || fs::path(argument).extension() == ".json" ||
-        argument.find('/') != std::string::npos) {
-        return argument;
-    }
-    return (fs::path(root.scenes_dir()) / (argument + ".json")).string();
-}
-
-std::vector<std::string> scenes_named(const GateRoot& root,
-                                      const std::vector<std::string>& arguments) {
-    if (arguments.empty()) {
-        return canonical_scenes(root);
-    }
-    std::vector<std::string> paths;
-    for (const std::string& argument : arguments) {
-        paths.push_back(resolve_scene(root, argument));
-    }
-    refuse_case_collisions(paths);
-    return paths;
-}
-
-std::vector<std::string> unreferenced_goldens(const GateRoot& root) {
-    // Lower case: a golden differing from a scene's name only in case is
-    // refused by check and bless for that scene, never pruned.
-    std::vector<std::string> names;
-    for (const std::string& path : canonical_scenes(root)) {
-        names.push_back(lower_case(stem(path)));
-    }
-    std::vector<std::string> unreferenced;
-    std::error_code error;
-    if (!fs::is_directory(root.goldens_dir(), error)) {
-        return unreferenced;
-    }
-    for (const fs::directory_entry& entry : fs::directory_iterator(root.goldens_dir())) {
-        const std::string name = lower_case(entry.path().stem().string());
-        if (entry.path().extension() == ".json" &&
-            std::find(names.begin(), names.end(), name) == names.end()) {
-            unreferenced.push_back(entry.path().string());
-        }
-    }
-    std::sort(unreferenced.begin(), unreferenced.end());
-    return unreferenced;
-}
-
-std::vector<std::string> shard(const std::vector<std::string>& scene_paths, int k, int n) {
-    std::vector<std::string> kept;
-    for (const std::string& path : scene_paths) {
-        if (static_cast<int>(fnv1a(stem(path)) % static_cast<std::uint64_t>(n)) == k - 1) {
-            kept.push_back(path);
-        }
-    }
-    return kept;
-}
-
-SceneCheck check_scene(const GateRoot& root, const std::string& scene_path,
-                       const CheckOptions& options) {
+SceneCheck check_scene(const Project& project, const EngineSpec& engine,
+                       const std::string& scene_path, const CheckOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     SceneCheck check;
     check.scene_file = scene_path;
-    check.name = stem(scene_path);
+    check.name = scene_stem(scene_path);
+    if (project.engines.size() > 1) {
+        check.engine = engine.name;
+    }
     try {
-        check.scene = load_scene_for_golden(scene_path);
+        check.scene = load_scene_for_golden(project, scene_path);
         const Scene& scene = *check.scene;
         check.name = scene.name;
-        check.golden_file = root.golden_path(scene.name);
+        check.golden_file = golden_path(project, engine, scene.name);
 
         std::optional<Tolerances> tolerances;
         if (options.tolerance_mode) {
             tolerances = tolerances_for(scene, options);
         }
-        check.value = run_scene(scene);
+        check.value = run_in(engine, scene, check.message);
+        if (!check.value) {
+            check.status = SceneCheck::Status::skipped;
+            check.seconds = seconds_since(start);
+            return check;
+        }
         check.expectations = evaluate_expectations(scene, *check.value);
 
-        refuse_case_variant_golden(root, scene_path, scene.name);
+        refuse_case_variant_golden(golden_folder(project, engine), scene_path, scene.name);
         if (!entry_exists(check.golden_file)) {
             throw InputError(check.golden_file, "",
-                             "no golden for scene '" + scene.name +
-                                 "'; bless it with scripts/regen-goldens " + scene.name);
+                             "no golden for scene '" + scene.name + "'; bless it with " +
+                                 regen_command(project, engine, scene.name));
         }
         check.gold = read_trajectory_file(check.golden_file, "a golden");
         if (tolerances) {
@@ -336,7 +234,7 @@ SceneCheck check_scene(const GateRoot& root, const std::string& scene_path,
         check.comparison = compare(*check.gold, *check.value, tolerances);
         check.stale = check.gold->scene_sha256 != scene.sha256;
 
-        record_verdict(check);
+        record_verdict(check, regen_command(project, engine, scene.name));
     } catch (const InputError& e) {
         check.status = SceneCheck::Status::error;
         check.message = e.what();
@@ -348,28 +246,64 @@ SceneCheck check_scene(const GateRoot& root, const std::string& scene_path,
     return check;
 }
 
-std::vector<SceneCheck> check_scenes(const GateRoot& root, const std::vector<std::string>& paths,
+std::vector<SceneCheck> check_scenes(const Project& project, const std::vector<EngineSpec>& engines,
+                                     const std::vector<std::string>& paths,
                                      const CheckOptions& options) {
     // on_start and on_done may run on any worker thread (the progress bar's are thread-safe).
-    return check_each(paths, options.jobs, [&](const std::string& path) {
-        if (options.on_start) {
-            options.on_start(path);
+    std::vector<SceneCheck> all;
+    for (const EngineSpec& engine : engines) {
+        std::vector<SceneCheck> checks =
+            check_each(paths, options.jobs, [&](const std::string& path) {
+                if (options.on_start) {
+                    options.on_start(path);
+                }
+                SceneCheck result = check_scene(project, engine, path, options);
+                if (options.on_done) {
+                    options.on_done();
+                }
+                return result;
+            });
+        if (engines.size() > 1 || project.engines.size() > 1) {
+            for (SceneCheck& check : checks) {
+                check.engine = engine.name; // an error row made by check_each has none yet
+            }
         }
-        SceneCheck result = check_scene(root, path, options);
-        if (options.on_done) {
-            options.on_done();
-        }
-        return result;
-    });
+        all.insert(all.end(), std::make_move_iterator(checks.begin()),
+                   std::make_move_iterator(checks.end()));
+    }
+    return all;
+}
+
+SceneCheck check_scene(const GateRoot& root, const std::string& scene_path,
+                       const CheckOptions& options) {
+    const Project project = project_of(root);
+    return check_scene(project, project.engines.front(), scene_path, options);
+}
+
+std::vector<SceneCheck> check_scenes(const GateRoot& root, const std::vector<std::string>& paths,
+                                     const CheckOptions& options) {
+    const Project project = project_of(root);
+    return check_scenes(project, project.engines, paths, options);
 }
 
 Blessing bless_scene(const GateRoot& root, const std::string& scene_path) {
+    const Project project = project_of(root);
+    return bless_scene(project, project.engines.front(), scene_path);
+}
+
+Blessing bless_scene(const Project& project, const EngineSpec& engine,
+                     const std::string& scene_path) {
     Blessing blessing;
-    blessing.name = stem(scene_path);
-    const Scene scene = load_scene_for_golden(scene_path);
+    blessing.name = scene_stem(scene_path);
+    const Scene scene = load_scene_for_golden(project, scene_path);
     blessing.name = scene.name;
-    blessing.golden_file = root.golden_path(scene.name);
-    const Trajectory trajectory = run_scene(scene);
+    blessing.golden_file = golden_path(project, engine, scene.name);
+    const std::optional<Trajectory> ran = run_in(engine, scene, blessing.summary);
+    if (!ran) {
+        blessing.outcome = Blessing::Outcome::skipped;
+        return blessing;
+    }
+    const Trajectory& trajectory = *ran;
     int failed_count = 0;
     const std::string failed =
         failed_expectations(evaluate_expectations(scene, trajectory), failed_count);
@@ -383,7 +317,7 @@ Blessing bless_scene(const GateRoot& root, const std::string& scene_path) {
     // Never a golden that check would refuse.
     require_readable_size(text, blessing.golden_file);
 
-    refuse_case_variant_golden(root, scene_path, scene.name);
+    refuse_case_variant_golden(golden_folder(project, engine), scene_path, scene.name);
     if (!entry_exists(blessing.golden_file)) {
         blessing.outcome = Blessing::Outcome::created;
     } else {
@@ -412,7 +346,7 @@ Blessing bless_scene(const GateRoot& root, const std::string& scene_path) {
         }
     }
     std::error_code error;
-    fs::create_directories(root.goldens_dir(), error);
+    fs::create_directories(golden_folder(project, engine), error);
     try {
         write_file_atomically(blessing.golden_file, text);
     } catch (const InputError& e) {

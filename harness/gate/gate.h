@@ -1,7 +1,9 @@
-// The golden gate (docs/design.md, "Comparing and the golden workflow"): canonical
-// scenes are simulated again and compared with the goldens blessed earlier.
+// The golden gate (docs/design.md, "Comparing and the golden workflow"): a
+// project's scenes are run again in its engines and compared with the
+// goldens blessed earlier.
 #pragma once
 
+#include "project.h"
 #include "scene_check.h"
 
 #include <functional>
@@ -11,30 +13,42 @@
 
 namespace impulse::harness {
 
-// Where scenes and goldens live: ROOT/harness/scenes/NAME.json, ROOT/goldens/NAME.json.
+// The implicit project at `root` (ROOT/harness/scenes, ROOT/goldens, the
+// impulse engine), for callers that have not moved to Project yet.
 struct GateRoot {
     std::string root = ".";
     std::string scenes_dir() const;
     std::string goldens_dir() const;
     std::string golden_path(const std::string& scene_name) const;
 };
+Project project_of(const GateRoot& root);
 
 // CI mode: the CI environment variable set to anything but empty, "0" or "false".
 bool ci_mode();
 
-// Canonical scene files under the root, sorted by name: every NAME.json entry,
-// readable or not (a dangling symlink is a scene that fails to load). Throws
-// InputError when the folder is missing or two names differ only in case.
-std::vector<std::string> canonical_scenes(const GateRoot& root);
-// A scene argument is a path when it names an existing file or ends in .json,
-// otherwise the name of a canonical scene.
-std::string resolve_scene(const GateRoot& root, const std::string& argument);
-// The scene files a verb works on: every canonical scene when no argument
+// The project's scene files (project_scenes), refusing two whose names differ
+// only in case (InputError naming both).
+std::vector<std::string> canonical_scenes(const Project& project);
+// A scene argument is a path when it names an existing file, ends in .json or
+// has a '/'; otherwise the name of a project scene (looked for in the first
+// scenes folder when no scene has that name, so the error names that file).
+std::string resolve_scene(const Project& project, const std::string& argument);
+// The scene files a verb works on: every project scene when no argument
 // names one, otherwise each argument resolved as above. Throws InputError
 // naming both files when two names differ only in case.
+std::vector<std::string> scenes_named(const Project& project,
+                                      const std::vector<std::string>& arguments);
+// Goldens with no project scene of their name, even ignoring case, in each
+// engine's golden folder (and, with several engines, GOLDENS/*.json).
+std::vector<std::string> unreferenced_goldens(const Project& project);
+// Throws InputError unless `scene_path` is one of the project's scenes: the
+// golden of any other scene would be unreferenced (and pruned).
+void require_project_scene(const Project& project, const std::string& scene_path);
+
+std::vector<std::string> canonical_scenes(const GateRoot& root);
+std::string resolve_scene(const GateRoot& root, const std::string& argument);
 std::vector<std::string> scenes_named(const GateRoot& root,
                                       const std::vector<std::string>& arguments);
-// Goldens with no canonical scene of their name, even ignoring case.
 std::vector<std::string> unreferenced_goldens(const GateRoot& root);
 
 // Keeps the scenes of shard k of n (1-based): a scene's shard depends on its
@@ -52,25 +66,38 @@ struct CheckOptions {
     std::function<void()> on_done;
 };
 
+// Runs the scene in `engine` (run_engine) and compares it with the engine's
+// golden. An engine's refusal is a skipped row, its failure an error row.
+SceneCheck check_scene(const Project& project, const EngineSpec& engine,
+                       const std::string& scene_path, const CheckOptions& options);
+// Every (engine, scene) pair, engine by engine, each engine's scenes on
+// `jobs` threads; results in that order, identical for any jobs.
+std::vector<SceneCheck> check_scenes(const Project& project, const std::vector<EngineSpec>& engines,
+                                     const std::vector<std::string>& paths,
+                                     const CheckOptions& options);
 SceneCheck check_scene(const GateRoot& root, const std::string& scene_path,
                        const CheckOptions& options);
-// Checks every scene on `jobs` threads; results in the order given, identical for any jobs.
 std::vector<SceneCheck> check_scenes(const GateRoot& root, const std::vector<std::string>& paths,
                                      const CheckOptions& options);
 
 // What bless did to one golden.
 struct Blessing {
     // unwritten: the golden could not be written (read-only folder, disk
-    // full); summary holds the sentence naming it.
-    enum class Outcome { created, changed, unchanged, refused, unwritten };
+    // full); summary holds the sentence naming it. skipped: the engine
+    // refused the scene's settings; summary holds its sentence.
+    enum class Outcome { created, changed, unchanged, refused, unwritten, skipped };
     std::string name;
     std::string golden_file;
     Outcome outcome = Outcome::unchanged;
     std::string summary; // changed: what moved and by how much; refused: why
 };
 
-// Runs the scene and writes its golden (atomically, only when the bytes change).
-// A scene that fails its own expectations or does not run is refused.
+// Runs the scene in `engine` and writes its golden (atomically, only when the
+// bytes change). A scene that fails its own expectations is refused; one
+// that does not load, lies outside the project or fails in the engine throws
+// InputError.
+Blessing bless_scene(const Project& project, const EngineSpec& engine,
+                     const std::string& scene_path);
 Blessing bless_scene(const GateRoot& root, const std::string& scene_path);
 
 } // namespace impulse::harness

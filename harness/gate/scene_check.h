@@ -15,8 +15,13 @@ namespace impulse::harness {
 
 // The outcome of checking one scene.
 struct SceneCheck {
-    enum class Status { passed, failed, error };
+    // skipped: the engine refused the scene's settings (unsupported); neither
+    // a pass nor a failure.
+    enum class Status { passed, failed, error, skipped };
     std::string name; // scene name (or file when it did not load)
+    // The engine's name when the project has several (rows and JUnit names
+    // carry it), else empty.
+    std::string engine;
     std::string scene_file;
     std::string golden_file;
     Status status = Status::passed;

@@ -62,6 +62,9 @@ CheckCounts count_checks(const std::vector<SceneCheck>& checks) {
         case Status::error:
             ++c.errors;
             break;
+        case Status::skipped:
+            ++c.skipped;
+            break;
         }
         c.seconds += safe_seconds(check.seconds);
     }
@@ -73,22 +76,24 @@ std::string seconds_text(double s) {
 }
 
 std::string verdict_counts(const CheckCounts& c) {
-    return plural(c.passed + c.failed + c.errors, "scene", "scenes") + ": " +
+    return plural(c.passed + c.failed + c.errors + c.skipped, "scene", "scenes") + ": " +
            std::to_string(c.passed) + " passed, " + std::to_string(c.failed) + " failed, " +
-           plural(c.errors, "error", "errors");
+           plural(c.errors, "error", "errors") +
+           (c.skipped > 0 ? ", " + std::to_string(c.skipped) + " skipped" : "");
 }
 
 const char* status_word(Status status) {
-    constexpr const char* words[] = {"passed", "failed", "error"}; // in Status's order
+    constexpr const char* words[] = {"passed", "failed", "error", "skipped"}; // in Status's order
     const auto i = static_cast<std::size_t>(status);
     return i < std::size(words) ? words[i] : "error";
 }
 
 std::string display_name(const SceneCheck& check) {
+    const std::string engine = check.engine.empty() ? "" : check.engine + "/";
     if (!check.name.empty()) {
-        return check.name;
+        return engine + check.name;
     }
-    return check.scene_file.empty() ? std::string("(unnamed)") : check.scene_file;
+    return engine + (check.scene_file.empty() ? std::string("(unnamed)") : check.scene_file);
 }
 
 // Why a scene failed, in two or three words (JUnit's failure type).
@@ -128,6 +133,8 @@ std::string outcome_line(const SceneCheck& check) {
         return failure_kind(check);
     case Status::error:
         break;
+    case Status::skipped:
+        return "skipped";
     }
     return "could not be checked";
 }

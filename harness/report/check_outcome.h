@@ -11,7 +11,7 @@
 namespace impulse::harness {
 
 struct CheckCounts {
-    std::size_t passed = 0, failed = 0, errors = 0;
+    std::size_t passed = 0, failed = 0, errors = 0, skipped = 0;
     double seconds = 0.0;
 };
 
@@ -19,10 +19,11 @@ CheckCounts count_checks(const std::vector<SceneCheck>& checks);
 
 // Seconds with three decimals: "0.012"; an unmeasured or negative time is 0.
 std::string seconds_text(double s);
-// "3 scenes: 2 passed, 1 failed, 0 errors".
+// "3 scenes: 2 passed, 1 failed, 0 errors" (", 1 skipped" when one was).
 std::string verdict_counts(const CheckCounts& c);
 const char* status_word(SceneCheck::Status status);
-// The scene's name, else its file, else "(unnamed)".
+// "ENGINE/NAME" when the project has several engines; the scene's name,
+// else its file, else "(unnamed)".
 std::string display_name(const SceneCheck& check);
 // Why a scene failed, in two or three words (JUnit's failure type).
 std::string failure_kind(const SceneCheck& check);

@@ -38,14 +38,20 @@ std::string junit_xml(const std::vector<SceneCheck>& checks) {
                                std::to_string(c.errors) + "\"";
     std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
     out += "<testsuites name=\"impulse\"" + totals + " time=\"" + seconds_text(c.seconds) + "\">\n";
-    out += "  <testsuite name=\"impulse.gate\"" + totals + " skipped=\"0\" time=\"" +
-           seconds_text(c.seconds) + "\">\n";
+    out += "  <testsuite name=\"impulse.gate\"" + totals + " skipped=\"" +
+           std::to_string(c.skipped) + "\" time=\"" + seconds_text(c.seconds) + "\">\n";
     for (const SceneCheck& check : checks) {
         out += "    <testcase classname=\"impulse.gate\" name=\"" +
                xml_escape(display_name(check), true) + "\" time=\"" + seconds_text(check.seconds) +
                "\"";
         if (check.status == Status::passed) {
             out += "/>\n";
+            continue;
+        }
+        if (check.status == Status::skipped) {
+            // An engine's refusal of the scene's settings: neither a pass nor a failure.
+            out += ">\n      <skipped message=\"" + xml_escape(check.message, true) + "\"/>\n";
+            out += "    </testcase>\n";
             continue;
         }
         const bool failed = check.status == Status::failed;

@@ -139,6 +139,9 @@ std::string summary_markdown(const std::vector<SceneCheck>& checks) {
         case Status::error:
             result = "\u26a0\ufe0f error";
             break;
+        case Status::skipped:
+            result = "\u23ed\ufe0f skipped";
+            break;
         }
         out += "| " + markdown_cell(display_name(check), 100) + " | " + result + " | " +
                markdown_cell(outcome_line(check)) + " | " + seconds_text(check.seconds) + " s |\n";

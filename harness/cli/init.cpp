@@ -1,0 +1,122 @@
+// `impulse init [DIR]`: a starter project, DIR/impulse.json and one example
+// scene with an exact answer, so check and bless work there from the start.
+#include "atomic_file.h"
+#include "cli.h"
+#include "input_error.h"
+#include "project.h"
+
+#include <filesystem>
+#include <ostream>
+
+namespace impulse::harness::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* init_help = R"(usage: impulse init [DIR]
+
+Starts a project in DIR (default: the current folder): writes DIR/impulse.json
+(the project file: scenes in DIR/scenes, goldens in DIR/goldens, one engine
+whose command is a placeholder for yours) and DIR/scenes/drop.json (a disc
+dropped on the ground, with the exact answer every run is checked against),
+then prints the next steps. Refuses, writing nothing, when either file exists.
+See docs/project-file.md and docs/engine-protocol.md.
+
+Exit: 0 written, 2 a file exists or cannot be written.
+)";
+
+// The placeholder command cannot explain itself in JSON (no comments): the
+// next steps printed on standard output do.
+constexpr const char* starter_project = R"({
+  "schema": "impulse/project@1",
+  "scenes": ["scenes"],
+  "goldens": "goldens",
+  "engines": [
+    {"name": "my-engine", "command": ["./my-engine"], "time_limit": 60}
+  ],
+  "regen": "impulse regen"
+}
+)";
+
+// A drop has an exact answer (docs/physics.md): every impact time and the
+// speed after it follow from g, the gap and e alone, so a correct engine
+// passes it whatever its own choices.
+constexpr const char* starter_scene = R"({
+  "schema": "impulse/scene@1",
+  "name": "drop",
+  "description": "A disc of radius 0.5 dropped from a 2 m gap onto the ground, e = 0.7: each impact's time and speed have an exact answer",
+  "gravity": [0, -9.81],
+  "restitution": 0.7,
+  "dt": 0.01,
+  "duration": 3.0,
+  "solver": {"integrator": "rk4"},
+  "bodies": [
+    {"name": "ground", "static": true, "shape": {"box": [50, 0.5]}, "position": [0, -0.5]},
+    {"name": "ball", "shape": {"circle": 0.5}, "density": 2, "position": [0, 2.5]}
+  ],
+  "expectations": [
+    {"kind": "drop", "body": "ball", "impacts": 3, "rtol": 1e-09, "atol": 1e-12}
+  ]
+}
+)";
+
+bool entry_exists(const fs::path& path) {
+    std::error_code error;
+    return fs::symlink_status(path, error).type() != fs::file_type::not_found;
+}
+
+void print_next_steps(const std::string& project_file, std::ostream& out) {
+    out << "next steps:\n"
+        << "  1. Put your engine behind the gate: in " << project_file << ", engines[0].command\n"
+        << "     [\"./my-engine\"] is a placeholder. Make it the program that runs your engine;\n"
+        << "     it is given a scene file's path and writes the trajectory to standard output\n"
+        << "     (docs/engine-protocol.md). To try the gate with impulse's own engine first,\n"
+        << "     make the engine {\"name\": \"impulse\", \"builtin\": \"impulse\"}.\n"
+        << "  2. impulse bless    runs the scenes and writes goldens/drop.json\n"
+        << "  3. impulse check    the gate: exit 0 while nothing moved, 1 naming the scene,\n"
+        << "                      body, channel and time when something did\n"
+        << "  4. impulse regen    accepts an intended change (rewrites the goldens)\n";
+}
+
+} // namespace
+
+int init_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream&) {
+    const Arguments a = parse_arguments(args, {}, {"--help"});
+    if (a.has_flag("--help")) {
+        out << init_help;
+        return exit_ok;
+    }
+    if (a.positional.size() > 1) {
+        throw UsageError("takes at most one DIR, got " + std::to_string(a.positional.size()));
+    }
+    const fs::path dir = a.positional.empty() ? fs::path(".") : fs::path(a.positional.front());
+    const fs::path project_file = dir / project_file_name;
+    const fs::path scene_file = dir / "scenes" / "drop.json";
+    // Both are checked before either is written: a refusal writes nothing.
+    for (const fs::path& file : {project_file, scene_file}) {
+        if (entry_exists(file)) {
+            throw InputError(file.string(), "",
+                             "already exists; impulse init writes a new project and never "
+                             "overwrites one (edit the file, or init another folder)");
+        }
+    }
+    std::error_code error;
+    fs::create_directories(dir / "scenes", error);
+    if (error) {
+        throw InputError((dir / "scenes").string(), "", "cannot be made (" + error.message() + ")");
+    }
+    write_file_atomically(scene_file.string(), starter_scene);
+    try {
+        write_file_atomically(project_file.string(), starter_project);
+    } catch (const InputError&) {
+        fs::remove(scene_file, error); // all or nothing
+        throw;
+    }
+    out << "wrote " << printable_path(project_file.string()) << " and "
+        << printable_path(scene_file.string()) << "\n\n";
+    print_next_steps(printable_path(project_file.string()), out);
+    return exit_ok;
+}
+
+} // namespace impulse::harness::cli

@@ -1,0 +1,215 @@
+// Reading impulse.json (docs/project-file.md) as strictly as a scene, with
+// the scene loader's typed reads, so a mistake is worded as in a scene file.
+#include "atomic_file.h"
+#include "input_error.h"
+#include "project.h"
+#include "scene_reading.h"
+#include "strict_json.h"
+
+#include <algorithm>
+#include <filesystem>
+
+namespace impulse::harness {
+
+namespace fs = std::filesystem;
+using scene_reading::Node;
+
+namespace {
+
+constexpr std::size_t max_project_bytes = 1 << 20;
+
+// A path of the project file must stay inside the project's folder: scenes
+// and goldens travel with the repository, and bless writes only below it.
+fs::path read_inside_path(const Node& node) {
+    const std::string text = scene_reading::read_string(node);
+    if (text.empty()) {
+        node.fail("must not be empty");
+    }
+    const fs::path path(text);
+    if (path.is_absolute()) {
+        node.fail("must be relative to the project file's folder, got " +
+                  scene_reading::shown(node) +
+                  ": an absolute path would not travel with the repository");
+    }
+    for (const fs::path& part : path) {
+        if (part == "..") {
+            node.fail("must stay inside the project file's folder (no '..'), got " +
+                      scene_reading::shown(node) +
+                      ": scenes and goldens travel with the repository, and bless writes only "
+                      "below it");
+        }
+    }
+    fs::path normal = path.lexically_normal();
+    if (!normal.empty() && normal.filename().empty()) {
+        normal = normal.parent_path(); // "goldens/" is the folder "goldens"
+    }
+    return normal;
+}
+
+bool has_wildcard(const std::string& text) {
+    return text.find_first_of("*?[") != std::string::npos;
+}
+
+std::vector<std::string> read_scenes(const Node& node) {
+    scene_reading::require_array(node);
+    if (node.json().empty()) {
+        node.fail("must name at least one scene folder or pattern");
+    }
+    std::vector<std::string> scenes;
+    for (std::size_t i = 0; i < node.json().size(); ++i) {
+        const Node entry = node.element(i);
+        const fs::path path = read_inside_path(entry);
+        if (has_wildcard(path.parent_path().string())) {
+            entry.fail("may have wildcards (*, ?, [...]) only in its file-name part, got " +
+                       scene_reading::shown(entry));
+        }
+        scenes.push_back(path.string());
+    }
+    return scenes;
+}
+
+// The folder a scenes entry reads: itself, or a pattern's folder.
+std::string folder_of(const std::string& entry) {
+    return has_wildcard(fs::path(entry).filename().string())
+               ? fs::path(entry).parent_path().string()
+               : entry;
+}
+
+std::string read_goldens(const Node& node, const std::vector<std::string>& scenes) {
+    const fs::path path = read_inside_path(node);
+    const std::string goldens = path.string();
+    if (goldens == "." || goldens.empty()) {
+        node.fail("must be a folder below the project file's folder, not the folder itself: "
+                  "bless --prune deletes the .json files there that are not goldens");
+    }
+    for (const std::string& entry : scenes) {
+        const std::string folder = folder_of(entry);
+        if (folder == goldens || (folder.empty() && goldens == ".")) {
+            node.fail("is also a scenes folder (\"" + entry +
+                      "\"): a golden NAME.json would overwrite its scene NAME.json");
+        }
+    }
+    return goldens;
+}
+
+EngineSpec read_engine(const Node& node, const std::string& root, const std::string& file) {
+    scene_reading::require_object(node);
+    scene_reading::reject_unknown_keys(node, {"name", "builtin", "command", "time_limit"});
+    EngineSpec engine;
+    engine.name = scene_reading::read_name(scene_reading::required_member(node, "name"));
+    engine.origin = printable_path(file) + ": " + node.path();
+    const bool builtin = node.has("builtin"), command = node.has("command");
+    if (builtin == command) {
+        node.fail("must have exactly one of \"builtin\" (\"impulse\" or \"box2d\") and "
+                  "\"command\" (the program that speaks docs/engine-protocol.md)");
+    }
+    if (builtin) {
+        const Node kind = node.member("builtin");
+        const std::string name = scene_reading::read_string(kind);
+        if (name != "impulse" && name != "box2d") {
+            kind.fail("must be \"impulse\" or \"box2d\", got " + scene_reading::shown(kind));
+        }
+        if (node.has("time_limit")) {
+            node.member("time_limit")
+                .fail("applies to an engine with a \"command\"; a builtin engine runs in process");
+        }
+        engine.kind = name == "impulse" ? EngineSpec::Kind::impulse : EngineSpec::Kind::box2d;
+        return engine;
+    }
+    const Node list = node.member("command");
+    scene_reading::require_array(list);
+    if (list.json().empty()) {
+        list.fail("must name the program to run, as [\"program\", \"argument\", ...]");
+    }
+    for (std::size_t i = 0; i < list.json().size(); ++i) {
+        engine.command.push_back(scene_reading::read_string(list.element(i)));
+    }
+    if (engine.command.front().empty()) {
+        list.element(0).fail("must name the program to run, got \"\"");
+    }
+    if (const auto limit = scene_reading::optional_member(node, "time_limit")) {
+        engine.time_limit = scene_reading::read_positive(*limit);
+    }
+    engine.kind = EngineSpec::Kind::external;
+    std::error_code error;
+    const fs::path absolute = fs::absolute(root, error);
+    engine.working_directory = error ? root : absolute.lexically_normal().string();
+    return engine;
+}
+
+std::vector<EngineSpec> read_engines(const Node& node, const std::string& root,
+                                     const std::string& file) {
+    scene_reading::require_array(node);
+    if (node.json().empty()) {
+        node.fail("must name at least one engine");
+    }
+    std::vector<EngineSpec> engines;
+    for (std::size_t i = 0; i < node.json().size(); ++i) {
+        EngineSpec engine = read_engine(node.element(i), root, file);
+        for (const EngineSpec& earlier : engines) {
+            if (earlier.name == engine.name) {
+                node.element(i).member("name").fail(
+                    "repeats the engine name \"" + engine.name +
+                    "\": each engine's goldens are goldens/ENGINE/, so names must be unique");
+            }
+        }
+        engines.push_back(std::move(engine));
+    }
+    return engines;
+}
+
+Project read_project(const Node& top, const std::string& file, const std::string& root) {
+    scene_reading::require_object(top);
+    scene_reading::reject_unknown_keys(
+        top, {"schema", "scenes", "goldens", "engines", "box2d", "regen"});
+    const Node schema = scene_reading::required_member(top, "schema");
+    if (!schema.json().is_string() || schema.json().get<std::string>() != project_schema) {
+        schema.fail(std::string("must be \"") + project_schema + "\", got " +
+                    scene_reading::shown(schema));
+    }
+    Project project;
+    project.root = root;
+    project.file = file;
+    project.regen = "impulse regen";
+    project.scenes = read_scenes(scene_reading::required_member(top, "scenes"));
+    if (const auto goldens = scene_reading::optional_member(top, "goldens")) {
+        project.goldens = read_goldens(*goldens, project.scenes);
+    }
+    if (const auto engines = scene_reading::optional_member(top, "engines")) {
+        project.engines = read_engines(*engines, root, file);
+    }
+    if (const auto box2d = scene_reading::optional_member(top, "box2d")) {
+        project.box2d = scene_reading::read_bool(*box2d);
+    }
+    if (const auto regen = scene_reading::optional_member(top, "regen")) {
+        project.regen = scene_reading::read_string(*regen);
+        if (project.regen.empty()) {
+            regen->fail("must not be empty: it is the command hints tell you to run");
+        }
+    }
+    return project;
+}
+
+} // namespace
+
+Project parse_project(const std::string& text, const std::string& file, const std::string& root) {
+    const nlohmann::json document = parse_strict_json<nlohmann::json>(text, file);
+    try {
+        return read_project(Node(document, ""), file, root);
+    } catch (const json_fields::FieldError& error) {
+        throw InputError(file, error.path, error.message);
+    }
+}
+
+Project load_project(const std::string& file) {
+    const std::string root = fs::path(file).parent_path().string();
+    Project project =
+        parse_project(read_file(file, max_project_bytes, "a project file is a few hundred bytes"),
+                      file, root.empty() ? "." : root);
+    // Every verb, even one that names its scene by path, refuses a project
+    // whose scenes entry matches nothing: the mistake is said where it is made.
+    project_scenes(project);
+    return project;
+}
+
+} // namespace impulse::harness
