@@ -54,5 +54,6 @@ int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
 int render_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int stress_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int conform_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 } // namespace impulse::harness::cli
