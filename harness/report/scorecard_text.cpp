@@ -91,7 +91,7 @@ std::string reference_cell(const EngineScore& engine, const ExpectationResult* r
 
 // The first of the engines' checks in the row, for the exact value when the
 // engine under test has none.
-const ExpectationResult* any_of(const Row& row) {
+const ExpectationResult* first_numeric(const Row& row) {
     for (const ExpectationResult* r : row.by_engine) {
         if (r != nullptr && r->allowed) {
             return r;
@@ -102,7 +102,7 @@ const ExpectationResult* any_of(const Row& row) {
 
 std::vector<std::string> cells_of(const SceneScore& scene, const Row& row) {
     const ExpectationResult* mine = row.by_engine[0];
-    const ExpectationResult* exact = mine != nullptr && mine->allowed ? mine : any_of(row);
+    const ExpectationResult* exact = mine != nullptr && mine->allowed ? mine : first_numeric(row);
     std::vector<std::string> cells;
     cells.push_back(value_cell(exact ? std::optional(exact->expected) : std::nullopt, 6));
     const bool numeric = mine != nullptr && mine->allowed;
