@@ -32,6 +32,9 @@ verbs:
                      solver settings, impulse and Box2D
   stress             numerical stability at the extremes: a matrix of built-in
                      scenes, every invariant's worst value against its bound
+  conform --engine ENGINE
+                     the conformance suite: the shipped scenes' exact answers and
+                     conservation laws scored in ENGINE, impulse and Box2D beside it
 
 The project: the first impulse.json found from the current folder upwards
 (or in --root DIR) says where the scenes and goldens are and which engines
@@ -149,6 +152,9 @@ int main(int argc, char** argv) {
         }
         if (verb == "regen") {
             return regen_verb(rest, out, err);
+        }
+        if (verb == "conform") {
+            return conform_verb(rest, out, err);
         }
         err << "impulse: unknown verb '" << verb << "'; see 'impulse --help'\n";
         return exit_bad_input;

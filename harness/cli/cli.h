@@ -60,5 +60,6 @@ int regen_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
 // the verb in messages.
 int write_goldens(const std::string& verb, const std::vector<std::string>& args, std::ostream& out,
                   std::ostream& err);
+int conform_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 } // namespace impulse::harness::cli

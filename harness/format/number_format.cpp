@@ -1,5 +1,6 @@
 #include "number_format.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstddef>
@@ -73,6 +74,23 @@ std::string format_double(double value) {
     const std::to_chars_result result = std::to_chars(buffer, buffer + sizeof buffer, value);
     if (result.ec != std::errc()) {
         throw std::logic_error("format_double: std::to_chars failed");
+    }
+    return std::string(buffer, result.ptr);
+}
+
+std::string significant_text(double value, int digits) {
+    if (std::isnan(value)) {
+        return "NaN";
+    }
+    if (std::isinf(value)) {
+        return value > 0.0 ? "inf" : "-inf";
+    }
+    char buffer[64];
+    const std::to_chars_result result =
+        std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general,
+                      std::clamp(digits, 1, 17));
+    if (result.ec != std::errc()) {
+        throw std::logic_error("significant_text: std::to_chars failed");
     }
     return std::string(buffer, result.ptr);
 }

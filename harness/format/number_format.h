@@ -13,6 +13,12 @@ namespace impulse::harness {
 // caller that gets here has let a non-finite value through.
 std::string format_double(double value);
 
+// A number for a table a person reads: `digits` significant digits
+// (std::to_chars' general format, locale-free: "0.4515", "1.1e-16", "0"),
+// "NaN", "inf" and "-inf" for what is not finite. Never parsed back; files
+// carry format_double's exact text.
+std::string significant_text(double value, int digits);
+
 // Reads one JSON number (the whole of `text`, nothing around it) into
 // `value`. Returns false, leaving `value` alone, for anything else and for
 // numbers a double cannot hold (overflow, underflow to zero).

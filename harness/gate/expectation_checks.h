@@ -34,6 +34,7 @@ class Checks {
         r.passed = off <= allowed; // false for NaN
         r.expected = finite_or_zero(expected.value);
         r.actual = finite_or_zero(actual);
+        r.allowed = allowed;
         if (!std::isfinite(expected.value)) {
             r.passed = false;
             r.detail = "the exact formula gives " + sentence_number(expected.value) +
@@ -70,6 +71,7 @@ class Checks {
         r.passed = passed && finite;
         r.expected = finite_or_zero(expected);
         r.actual = finite_or_zero(actual);
+        r.allowed = allowed;
         if (!finite) {
             r.detail = "not finite: expected " + sentence_number(expected) + ", got " +
                        sentence_number(actual) + ", allowed " + sentence_number(allowed) + "; " +
@@ -85,6 +87,7 @@ class Checks {
     void failure(const std::string& what, const std::string& detail, double expected = 0.0,
                  double actual = 0.0) {
         judged(what, false, expected, actual, detail);
+        out_.back().allowed.reset();
     }
 
     // Names compared as strings: no tolerance applies.

@@ -4,6 +4,7 @@
 #include "scene.h"
 #include "trajectory.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,11 @@ struct ExpectationResult {
     bool passed = true;
     double expected = 0.0;
     double actual = 0.0;
+    // The allowance |actual - expected| was judged against (atol + rtol x
+    // scale; one-sided for energy-non-increasing), for a scorecard that shows
+    // it; empty for a name compared as a string and for a check that failed
+    // without a number (a missing event or frame).
+    std::optional<double> allowed;
     std::string detail; // one sentence when it failed (or cannot be evaluated)
 };
 
