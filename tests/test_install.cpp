@@ -100,6 +100,19 @@ const fs::path& installed_prefix() {
     return prefix;
 }
 
+// The compiler and flags the installed libraries were built with (CTest
+// passes them), for the example's configure: a sanitizer build's libraries
+// need the sanitizer's runtime in the engine's link too.
+void append_build_settings(std::vector<std::string>& args) {
+    for (const char* setting :
+         {"CMAKE_CXX_COMPILER", "CMAKE_CXX_FLAGS", "CMAKE_EXE_LINKER_FLAGS"}) {
+        const char* value = std::getenv((std::string("IMPULSE_BUILD_") + setting).c_str());
+        if (value != nullptr && *value != '\0') {
+            args.push_back(std::string("-D") + setting + "=" + value);
+        }
+    }
+}
+
 // The installed copy of examples/engines/cpp-minimal, configured with
 // CMAKE_PREFIX_PATH the prefix and built: the path of the engine.
 const std::string& cpp_minimal() {
@@ -108,9 +121,15 @@ const std::string& cpp_minimal() {
         const fs::path example =
             installed_prefix() / "share" / "impulse" / "examples" / "engines" / "cpp-minimal";
         const fs::path build = dir.dir / "build";
-        const Outcome configure = run_program(
-            {"cmake", "-S", example.string(), "-B", build.string(),
-             "-DCMAKE_PREFIX_PATH=" + installed_prefix().string(), "-DCMAKE_BUILD_TYPE=Release"});
+        std::vector<std::string> args = {"cmake",
+                                         "-S",
+                                         example.string(),
+                                         "-B",
+                                         build.string(),
+                                         "-DCMAKE_PREFIX_PATH=" + installed_prefix().string(),
+                                         "-DCMAKE_BUILD_TYPE=Release"};
+        append_build_settings(args);
+        const Outcome configure = run_program(args);
         {
             INFO(configure.out << configure.err);
             REQUIRE(configure.exit_code == 0);
