@@ -3,7 +3,7 @@
 // engine passes, a subtly wrong one fails naming the expectation, a refusing
 // one is skipped, a crashing one is an error row.
 //
-// Tests that run an external engine are tagged [.conform-external], hidden,
+// Tests that run an external engine are tagged [conform-external], hidden,
 // until the engine protocol's runner lands (run_engine throws "cannot be run
 // yet" for external engines before it); then the tag becomes [conform].
 #include "conformance.h"
@@ -362,7 +362,6 @@ TEST_CASE("conform refuses bad input with one sentence and exit 2, running nothi
         CHECK(o.err.find(words) != std::string::npos);
         CHECK(o.out.empty());
     };
-    refused({"conform"}, scenes_env, "needs --engine");
     refused({"conform", "--engine", "nonesuch"}, scenes_env, "no engine is named 'nonesuch'");
     refused({"conform", "--engine", "impulse", "cradle"}, scenes_env,
             "'cradle' is not a conformance scene: its solver block chooses a collision model");
@@ -381,7 +380,7 @@ TEST_CASE("conform refuses bad input with one sentence and exit 2, running nothi
             "bad.json");
 }
 
-TEST_CASE("conform tells a subtly wrong engine from a correct one", "[.conform-external]") {
+TEST_CASE("conform tells a subtly wrong engine from a correct one", "[conform-external]") {
     const TempDir dir;
     const fs::path recorded = dir.dir / "drop-box.json";
     REQUIRE(
@@ -441,7 +440,7 @@ TEST_CASE("conform tells a subtly wrong engine from a correct one", "[.conform-e
 }
 
 TEST_CASE("conform skips what an engine refuses; refusing everything shows nothing",
-          "[.conform-external]") {
+          "[conform-external]") {
     const TempDir dir;
     const fs::path script = dir.dir / "refuse.py";
     spit(script, "import sys\nsys.stderr.write('no rigid bodies here\\n')\nsys.exit(3)\n");
@@ -467,7 +466,7 @@ TEST_CASE("conform skips what an engine refuses; refusing everything shows nothi
 }
 
 TEST_CASE("conform turns an engine's crash into that scene's error row and exit 2",
-          "[.conform-external]") {
+          "[conform-external]") {
     const TempDir dir;
     const fs::path recorded = dir.dir / "drop-box.json";
     REQUIRE(

@@ -530,15 +530,16 @@ TEST_CASE("the box2d engine runs a canonical scene", "[engine-protocol]") {
     CHECK(run.trajectory.frames.size() == static_cast<std::size_t>(step_count(scene)) + 1);
     CHECK(run.trajectory.scene_sha256 == scene.sha256);
 
-    SECTION("a scene single precision cannot hold is refused, naming the file and the value") {
+    SECTION("a scene single precision cannot hold is unsupported, naming the file and the value") {
         TempDir temp;
         std::string text = fall_scene_text;
         text.replace(text.find("\"velocity\""), 0, "\"mass\": 1e-300, ");
         spit(temp.dir / "tiny.json", text);
         const Scene tiny = load_scene((temp.dir / "tiny.json").string());
-        const std::string why = refusal(box2d_engine(), tiny);
-        CHECK(why.rfind(tiny.file + ": bodies[0].mass: ", 0) == 0);
-        CHECK(why.find("Box2D") != std::string::npos);
+        const EngineRun refused = run_engine(box2d_engine(), tiny);
+        CHECK(refused.outcome == EngineRun::Outcome::unsupported);
+        CHECK(refused.message.rfind(tiny.file + ": bodies[0].mass: ", 0) == 0);
+        CHECK(refused.message.find("Box2D") != std::string::npos);
     }
 }
 #endif

@@ -4,7 +4,7 @@
 // run_engine, its refusals are skips, and the sweep says where its cost came
 // from.
 //
-// The tests tagged [.engine-external] run an external engine through the
+// The tests tagged [engine-external] run an external engine through the
 // protocol (docs/engine-protocol.md). They are hidden until the protocol
 // runner (harness/engines/, another branch) lands; until then run_engine
 // throws "cannot be run yet" for an external engine. Run them with
@@ -166,7 +166,7 @@ TEST_CASE("An engine the studies do not know, or a setting it cannot vary, is a 
         const test::Outcome o = run_tool({verb, "head-on", "--root", root, "--engine", "nope"});
         CHECK(o.exit_code == 2);
         CHECK(o.out.empty());
-        CHECK(o.err.find("--engine takes impulse or box2d, got 'nope'") != std::string::npos);
+        CHECK(o.err.find("no engine is named 'nope' (--engine)") != std::string::npos);
 
         const test::Outcome empty =
             run_tool({verb, "head-on", "--root", root, "--engine-command", " "});
@@ -245,7 +245,7 @@ TEST_CASE("Another engine's sweep says in its CSV and plot where its cost came f
 }
 
 #ifdef IMPULSE_WITH_BOX2D
-TEST_CASE("box2d compares an external engine's trajectory with Box2D's", "[.engine-external]") {
+TEST_CASE("box2d compares an external engine's trajectory with Box2D's", "[engine-external]") {
     const std::string tool = impulse::test::tool_under_test();
     const TempDir out;
     const std::vector<std::string> scenes = {"head-on", "corner-to-corner"};
@@ -286,7 +286,7 @@ TEST_CASE("box2d compares an external engine's trajectory with Box2D's", "[.engi
     CHECK(text.out.find("Box2D - wrapped") != std::string::npos);
 }
 
-TEST_CASE("box2d skips a scene whose settings the engine refuses", "[.engine-external]") {
+TEST_CASE("box2d skips a scene whose settings the engine refuses", "[engine-external]") {
     const TempDir dir;
     const std::string command = python_engine(dir, "symplectic-euler", "no symplectic-euler", "");
     const test::Outcome o = run_tool({"box2d", "head-on", "--root", root, "--quiet", "--engine",
@@ -306,7 +306,7 @@ TEST_CASE("box2d skips a scene whose settings the engine refuses", "[.engine-ext
 
 TEST_CASE("sweep runs an external engine over its grid; without a reported cost it times the "
           "process and says so",
-          "[.engine-external]") {
+          "[engine-external]") {
     const std::string tool = impulse::test::tool_under_test();
     const Scene scene = load_scene(scene_path("head-on"));
     const std::vector<std::string> grid = {"--no-box2d",   "--dt",      "0.01,0.005",
@@ -349,7 +349,7 @@ TEST_CASE("sweep runs an external engine over its grid; without a reported cost 
     CHECK(occurrences(csv.out, ",process\n") == 2);
 }
 
-TEST_CASE("sweep uses the cost an external engine reports", "[.engine-external]") {
+TEST_CASE("sweep uses the cost an external engine reports", "[engine-external]") {
     const TempDir dir;
     // 0.3 s of work for every run, 1234 steps: head-on's 1.5 s at dt 0.01 is
     // 150 steps of 0.01 s, so 0.3 / 1.5 = 0.2 s per simulated second.
@@ -371,7 +371,7 @@ TEST_CASE("sweep uses the cost an external engine reports", "[.engine-external]"
 }
 
 TEST_CASE("sweep lists the grid points an external engine refuses as skipped, once each",
-          "[.engine-external]") {
+          "[engine-external]") {
     const TempDir dir;
     const std::string command = python_engine(dir, "rk4", "rk4 is not modelled here", "");
     const test::Outcome o =

@@ -336,9 +336,9 @@ TEST_CASE("A skipped scene is a JUnit <skipped/>, counted apart from passes and 
 }
 
 // Needs the external-engine side of run_engine (engine_process): hidden until
-// it lands, then run with `impulse_tests "[.engine-pending]"`.
+// it lands, then run with `impulse_tests "[engine-external]"`.
 TEST_CASE("An engine that refuses a scene makes a SKIPPED row and check still passes",
-          "[.engine-pending]") {
+          "[engine-external]") {
     ProjectDir p(project_with(R"("scenes": ["scenes"],
                                  "engines": [{"name": "impulse", "builtin": "impulse"},
                                              {"name": "refuser", "command": ["sh", "refuse.sh"],

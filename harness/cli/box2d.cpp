@@ -5,16 +5,17 @@
 #include "atomic_file.h"
 #include "box2d_simulator.h"
 #include "cli.h"
+#include "engine_option.h"
 #include "gate.h"
 #include "input_error.h"
 #include "observables.h"
 #include "output_path.h"
 #include "progress.h"
+#include "project_options.h"
 #include "reference_comparison.h"
 #include "run.h"
 #include "simulator.h"
 #include "single_precision.h"
-#include "study_engine.h"
 #include "tunnelling.h"
 
 #include <algorithm>
@@ -53,7 +54,9 @@ bounces die out sooner than the scene's own integrator's: when the impulse
 engine stops on a Zeno cascade or a resting contact inside the scene, both
 runs are compared up to its last complete step, and the output says so.
 
-  --root DIR                   where harness/scenes/ is (default: .)
+  --root DIR                   the project's folder (default: the first impulse.json
+                               found from the current folder upwards; without one,
+                               the scenes are in ./harness/scenes/)
   --json                       the comparison as JSON, for scripts
   --out DIR                    also write both runs as trajectories, DIR/NAME.impulse.json
                                and DIR/NAME.box2d.json, for impulse diff and render (with
@@ -64,7 +67,8 @@ runs are compared up to its last complete step, and the output says so.
   --velocity-iterations N      Box2D's velocity iterations (default 8)
   --position-iterations N      Box2D's position iterations (default 3)
   --scene-integrator           run the impulse engine with the scene's own integrator
-  --engine NAME                the engine compared with Box2D (default impulse); it gets
+  --engine NAME                the engine compared with Box2D (default: the project's
+                               first engine, impulse without a project file); it gets
                                the scene with --dt and solver.integrator symplectic-euler
                                (unless --scene-integrator), which it may ignore; a scene
                                whose settings it refuses (exit 3) is skipped and listed
@@ -365,19 +369,22 @@ int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
         options.position_iterations = parse_count("--position-iterations", *n);
     }
     options.scene_integrator = a.has_flag("--scene-integrator");
-    options.engine = study_engine(a);
 #ifndef IMPULSE_WITH_BOX2D
     (void)out;
     err << "impulse box2d: this build has no Box2D (configured with IMPULSE_WITH_BOX2D=OFF); "
            "install libbox2d-dev and configure with -DIMPULSE_WITH_BOX2D=ON to use it\n";
     return exit_bad_input;
 #else
-    GateRoot root;
-    root.root = a.option("--root").value_or(".");
-    if (const auto dir = a.option("--out")) {
-        check_output_folder("--out", *dir, goldens_folders(root.root));
+    const Project project = find_project(a.option("--root"));
+    if (!project.box2d) {
+        throw InputError(project.file, "box2d",
+                         "is false: this project turns the Box2D comparison off");
     }
-    std::vector<std::string> paths = scenes_named(root, a.positional);
+    options.engine = chosen_engine(project, a);
+    if (const auto dir = a.option("--out")) {
+        check_output_folder("--out", *dir, protected_folders(project));
+    }
+    std::vector<std::string> paths = scenes_named(project, a.positional);
     // Everything is computed before anything is written: a bad scene or a
     // shape Box2D cannot take is one sentence on stderr, with no half output.
     std::vector<ReferenceComparison> comparisons;

@@ -1,13 +1,15 @@
-// `impulse conform --engine ENGINE`: the conformance suite. Every shipped
+// `impulse conform [--engine ENGINE]`: the conformance suite. Every shipped
 // canonical scene whose answers are physics rather than one of this engine's
 // solver choices (conformance.h) is run in ENGINE and scored expectation by
 // expectation, with this engine and Box2D beside it for scale (scorecard.h).
 #include "cli.h"
 #include "conformance.h"
 #include "engine.h"
+#include "engine_option.h"
 #include "input_error.h"
 #include "output_path.h"
 #include "progress.h"
+#include "project_options.h"
 #include "scorecard.h"
 #include "shipped_scenes.h"
 #include "text.h"
@@ -24,7 +26,7 @@ namespace impulse::harness::cli {
 namespace {
 
 constexpr const char* conform_help =
-    R"(usage: impulse conform --engine ENGINE [SCENE...] [options]
+    R"(usage: impulse conform [--engine ENGINE | --engine-command CMD] [SCENE...] [options]
 
 The conformance suite for 2D collision response: every shipped canonical
 scene whose expectations are physics (exact answers, conservation laws) and
@@ -35,13 +37,20 @@ and Box2D 2.4.1 are scored beside it, for scale. The rule that picks the
 scenes, and the list, are in docs/conformance.md (and --list). With SCENE
 names, only those conformance scenes.
 
-  --engine ENGINE   the engine to score: impulse or box2d
+  --engine ENGINE   the engine to score: one of the project's engines (default: its
+                    first; impulse without a project file), or the built-in impulse
+                    or box2d
+  --engine-command 'PROGRAM ARGS'
+                    score a program that speaks docs/engine-protocol.md, run in the
+                    current folder, instead of an engine of impulse.json
+  --root DIR        the project's folder (default: the first impulse.json found
+                    from the current folder upwards)
   --json FILE       the scorecard as JSON (impulse/conformance@1); - writes it to
                     standard output (the table then goes to standard error)
   --junit FILE      JUnit XML for ENGINE: one testcase per check, <skipped> for a
                     scene it refused, <error> for one it failed to run; - as --json
   --list            the shipped scenes, each in or out of the suite and why; runs nothing
-  --no-box2d        leave out the Box2D column
+  --no-box2d        leave out the Box2D column (so does "box2d": false in impulse.json)
   -j N, --jobs N    score N scenes at once (results identical to -j 1)
   --quiet           no progress bar (drawn on standard error only when that is a
                     terminal, after about a second of work)
@@ -56,44 +65,6 @@ outside its allowance, or no scene ran; 2 bad input, or ENGINE failed on a
 scene (crashed, timed out, wrote what is not a valid trajectory): that scene's
 row says how, and the other scenes are still scored.
 )";
-
-// The engines --engine knows. The project file's named engines come here too
-// once it exists.
-EngineSpec conform_engine(const std::string& name) {
-    if (name == "impulse") {
-        return impulse_engine();
-    }
-    if (name == "box2d") {
-#ifndef IMPULSE_WITH_BOX2D
-        throw UsageError("--engine box2d: this build has no Box2D (configured with "
-                         "IMPULSE_WITH_BOX2D=OFF)");
-#endif
-        return box2d_engine();
-    }
-    throw UsageError("--engine: no engine is named " + single_quoted(name) +
-                     "; the built-in engines are impulse and box2d");
-}
-
-// The temporary hidden --engine-command 'CMD ARGS': a program speaking the
-// engine protocol, its arguments split on spaces, named by --engine.
-EngineSpec command_engine(const std::string& name, const std::string& command) {
-    if (name == "impulse" || name == "box2d") {
-        throw UsageError("--engine-command: name the engine something other than the built-in " +
-                         single_quoted(name));
-    }
-    EngineSpec spec;
-    spec.kind = EngineSpec::Kind::external;
-    spec.name = name;
-    spec.origin = "--engine-command";
-    std::istringstream words(command);
-    for (std::string word; words >> word;) {
-        spec.command.push_back(word);
-    }
-    if (spec.command.empty()) {
-        throw UsageError("--engine-command needs a program to run");
-    }
-    return spec;
-}
 
 // The engine under test, then this engine and Box2D for scale, neither twice.
 std::vector<EngineSpec> engines_for(const EngineSpec& tested, bool box2d_wanted,
@@ -200,7 +171,8 @@ std::vector<SceneScore> score_with_progress(const std::vector<Scene>& scenes,
 
 int conform_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostream& err) {
     const Arguments a = parse_arguments(
-        normalise_jobs(raw), {"--engine", "--engine-command", "--json", "--junit", "--jobs"},
+        normalise_jobs(raw),
+        {engine_option, engine_command_option, "--root", "--json", "--junit", "--jobs"},
         {"--help", "--list", "--no-box2d", "--quiet"});
     if (a.has_flag("--help")) {
         out << conform_help;
@@ -211,16 +183,12 @@ int conform_verb(const std::vector<std::string>& raw, std::ostream& out, std::os
         write_list(out, dir, shipped_scenes(dir));
         return exit_ok;
     }
-    const std::optional<std::string> name = a.option("--engine");
-    const std::optional<std::string> command = a.option("--engine-command");
-    if (!name) {
-        throw UsageError("needs --engine ENGINE (impulse or box2d)");
-    }
-    const EngineSpec tested = command ? command_engine(*name, *command) : conform_engine(*name);
+    const Project project = find_project(a.option("--root"));
+    const EngineSpec tested = chosen_engine(project, a);
     const int jobs = a.option("--jobs") ? parse_jobs(*a.option("--jobs")) : 1;
 
     // Output paths are refused before anything runs.
-    const std::vector<std::string> goldens = goldens_folders(".");
+    const std::vector<std::string> goldens = protected_folders(project);
     const std::optional<std::string> json = a.option("--json");
     const std::optional<std::string> junit = a.option("--junit");
     if (json && junit && is_standard_output(*json) && is_standard_output(*junit)) {
@@ -238,7 +206,7 @@ int conform_verb(const std::vector<std::string>& raw, std::ostream& out, std::os
     card.engine = tested.name;
     card.scenes_dir = dir;
     const std::vector<EngineSpec> engines =
-        engines_for(tested, !a.has_flag("--no-box2d"), card.notes);
+        engines_for(tested, project.box2d && !a.has_flag("--no-box2d"), card.notes);
     for (std::size_t e = 1; e < engines.size(); ++e) {
         card.references.push_back(engines[e].name);
     }

@@ -10,10 +10,6 @@ std::vector<std::string> protected_folders(const Project& project) {
     return folders;
 }
 
-const EngineSpec& single_engine(const Project& project, const std::optional<std::string>& name) {
-    return name ? engine_named(project, *name) : project.engines.front();
-}
-
 std::string engine_names(const std::vector<EngineSpec>& engines) {
     std::string names;
     for (const EngineSpec& engine : engines) {

@@ -1,6 +1,5 @@
 // What the verbs share about the project they work in (docs/project-file.md):
-// the folders no verb but bless writes into, the engine a one-scene verb
-// runs, and how a list of engines is named in a header line.
+// the folders no verb but bless writes into, and how a list of engines is named in a header line.
 #pragma once
 
 #include "project.h"
@@ -13,8 +12,6 @@ namespace impulse::harness::cli {
 
 // The project's goldens folder, ROOT/goldens and ./goldens (goldens_folders).
 std::vector<std::string> protected_folders(const Project& project);
-// The engine `run` and `render` use: --engine NAME, else the project's first.
-const EngineSpec& single_engine(const Project& project, const std::optional<std::string>& name);
 // "impulse, fast" for a header line.
 std::string engine_names(const std::vector<EngineSpec>& engines);
 

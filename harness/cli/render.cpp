@@ -4,6 +4,7 @@
 #include "atomic_file.h"
 #include "cli.h"
 #include "engine.h"
+#include "engine_option.h"
 #include "gate.h"
 #include "input_error.h"
 #include "output_path.h"
@@ -22,7 +23,7 @@ namespace impulse::harness::cli {
 namespace {
 
 constexpr const char* render_help =
-    R"(usage: impulse render SCENE|TRAJECTORY [--out FILE.svg] [--root DIR] [--engine NAME]
+    R"(usage: impulse render SCENE|TRAJECTORY [--out FILE.svg] [--root DIR] [--engine NAME | --engine-command CMD]
 
 Draws an SVG picture of the motion: every dynamic body's path, its outline at
 key frames, each collision's contact point and normal, and a legend.
@@ -40,7 +41,10 @@ The file's "schema" decides what it is:
   --root DIR       the project's folder (default: the first impulse.json found
                    from the current folder upwards; without one, the scenes
                    are in ./harness/scenes/)
-  --engine NAME    run a scene in the project's engine NAME
+  --engine NAME    run a scene in the project's engine NAME (or the built-in
+                   impulse or box2d)
+  --engine-command 'PROGRAM ARGS'
+                   run a scene in an engine that speaks docs/engine-protocol.md
   --quiet          no progress bar (drawn on standard error only when that is a
                    terminal, after about a second of work)
 )";
@@ -84,8 +88,8 @@ bool starts_with(const std::string& text, const std::string& prefix) {
 } // namespace
 
 int render_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-    const Arguments a =
-        parse_arguments(args, {"--out", "--root", "--engine"}, {"--help", "--quiet"});
+    const Arguments a = parse_arguments(args, {"--out", "--root", "--engine", "--engine-command"},
+                                        {"--help", "--quiet"});
     if (a.has_flag("--help")) {
         out << render_help;
         return exit_ok;
@@ -96,7 +100,7 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
     }
     const std::string& input = a.positional.front();
     const Project project = find_project(a.option("--root"));
-    const EngineSpec& engine = single_engine(project, a.option("--engine"));
+    const EngineSpec engine = chosen_engine(project, a);
     const std::vector<std::string> goldens = protected_folders(project);
     if (const auto path = a.option("--out")) {
         check_output_file("--out", *path, goldens);

@@ -3,7 +3,9 @@
 
 #include "cli.h"
 #include "engine.h"
+#include "engine_option.h"
 #include "expectations.h"
+#include "gate.h"
 #include "input_error.h"
 #include "number_format.h"
 #include "output_path.h"
@@ -16,15 +18,19 @@ namespace impulse::harness::cli {
 
 namespace {
 constexpr const char* run_help =
-    R"(usage: impulse run SCENE [--out FILE] [--engine NAME] [--root DIR] [--dt S] [--integrator NAME] [--toi-tolerance S] [--quiet]
+    R"(usage: impulse run SCENE [--out FILE] [--engine NAME | --engine-command CMD] [--root DIR] [--dt S] [--integrator NAME] [--toi-tolerance S] [--quiet]
 
-Simulates SCENE (a path to an impulse/scene@1 file) in the project's first
+Simulates SCENE (an impulse/scene@1 file, or the name of a project scene) in the project's first
 engine (the impulse engine without a project file) and writes its
 impulse/trajectory@1 to FILE (atomically) or to standard output.
 
   --out FILE            write the trajectory here instead of standard output (a
                         regular file, never one in goldens/; - is standard output)
-  --engine NAME         the project's engine NAME instead of its first
+  --engine NAME         the project's engine NAME instead of its first (or the
+                        built-in impulse or box2d)
+  --engine-command 'PROGRAM ARGS'
+                        an engine that speaks docs/engine-protocol.md, run in the
+                        current folder, instead of one in impulse.json
   --root DIR            the project's folder (default: the first impulse.json
                         found from the current folder upwards)
   --dt S                time step in seconds (overrides the scene's dt)
@@ -41,9 +47,10 @@ that refuses the scene as unsupported.
 } // namespace
 
 int run_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-    const Arguments a = parse_arguments(
-        args, {"--out", "--engine", "--root", "--dt", "--integrator", "--toi-tolerance"},
-        {"--help", "--quiet"});
+    const Arguments a = parse_arguments(args,
+                                        {"--out", "--engine", "--engine-command", "--root", "--dt",
+                                         "--integrator", "--toi-tolerance"},
+                                        {"--help", "--quiet"});
     if (a.has_flag("--help")) {
         out << run_help;
         return exit_ok;
@@ -68,12 +75,12 @@ int run_verb(const std::vector<std::string>& args, std::ostream& out, std::ostre
     }
 
     const Project project = find_project(a.option("--root"));
-    const EngineSpec& engine = single_engine(project, a.option("--engine"));
+    const EngineSpec engine = chosen_engine(project, a);
     const std::vector<std::string> goldens = protected_folders(project);
     if (const auto path = a.option("--out")) {
         check_output_file("--out", *path, goldens);
     }
-    const Scene scene = load_scene(a.positional.front());
+    const Scene scene = load_scene(resolve_scene(project, a.positional.front()));
     for (const std::string& warning : scene.warnings) {
         err << "warning: " << warning << "\n";
     }

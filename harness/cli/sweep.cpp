@@ -3,14 +3,15 @@
 #include "sweep.h"
 
 #include "cli.h"
+#include "engine_option.h"
 #include "gate.h"
 #include "input_error.h"
 #include "markup.h"
 #include "number_format.h"
 #include "output_path.h"
 #include "progress.h"
+#include "project_options.h"
 #include "render.h"
-#include "study_engine.h"
 #include "sweep_csv.h"
 #include "sweep_plot.h"
 #include "text.h"
@@ -70,7 +71,8 @@ together) dominating every point of Box2D's.
   --box2d-substeps LIST     Box2D steps per scene step (default 1,4)
   --box2d-iterations LIST   velocity/position iterations (default 8/3,30/10)
   --no-box2d                impulse points only
-  --engine NAME             the engine under study (default impulse); for an engine
+  --engine NAME             the engine under study (default: the project's first, impulse
+                            without a project file); for an engine
                             other than impulse the grid is --dt x --integrator x
                             --toi-tolerance, which reach it as a modified scene
                             (docs/engine-protocol.md); points it refuses (exit 3) are
@@ -85,7 +87,9 @@ together) dominating every point of Box2D's.
                             terminal
   --quiet                   no progress bar (drawn on standard error only when that is a
                             terminal, after about a second of work)
-  --root DIR                where harness/scenes/ is (default: .)
+  --root DIR                the project's folder (default: the first impulse.json found
+                            from the current folder upwards; without one, the scenes
+                            are in ./harness/scenes/)
 
 A LIST is comma-separated, e.g. --dt 0.01,0.005. Exit 0, or 2 for bad input.
 )";
@@ -115,9 +119,9 @@ void refuse_impulse_only_options(const Arguments& a, const EngineSpec& engine) {
     }
 }
 
-SweepConfig config_from(const Arguments& a, const Scene& scene) {
+SweepConfig config_from(const Arguments& a, const Scene& scene, const Project& project) {
     SweepConfig config = default_sweep_config(scene);
-    config.engine = study_engine(a);
+    config.engine = chosen_engine(project, a);
     refuse_impulse_only_options(a, config.engine);
     if (const auto list = a.option("--dt")) {
         config.dts.clear();
@@ -502,18 +506,15 @@ int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
     if (a.has_flag("--json") + a.has_flag("--csv") + is_standard_output(svg) > 1) {
         throw UsageError("--json, --csv and --svg - all write to standard output: give one");
     }
-    GateRoot root;
-    if (const auto dir = a.option("--root")) {
-        root.root = *dir;
-    }
+    const Project project = find_project(a.option("--root"));
     if (!svg.empty()) {
-        check_output_file("--svg", svg, goldens_folders(root.root));
+        check_output_file("--svg", svg, protected_folders(project));
     }
-    const Scene scene = load_scene(resolve_scene(root, a.positional.front()));
+    const Scene scene = load_scene(resolve_scene(project, a.positional.front()));
     for (const std::string& warning : scene.warnings) {
         err << "warning: " << warning << "\n";
     }
-    const SweepConfig config = config_from(a, scene);
+    const SweepConfig config = config_from(a, scene, project);
     for (const std::string& warning : tunnelling_warnings(scene, config)) {
         err << "warning: " << warning << "\n";
     }
@@ -540,7 +541,7 @@ int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
         return run_sweep(scene, config, progress);
     }();
     if (!svg.empty()) {
-        write_output_file("--svg", svg, sweep_svg(result), goldens_folders(root.root), out);
+        write_output_file("--svg", svg, sweep_svg(result), protected_folders(project), out);
     }
     if (a.has_flag("--json")) {
         out << to_json(result).dump(2) << "\n";

@@ -35,11 +35,20 @@ constexpr std::size_t message_chars = 300;
 EngineRun run_box2d(const Scene& scene, const Overrides& overrides) {
 #ifdef IMPULSE_WITH_BOX2D
     const Scene effective = with_overrides(scene, overrides);
-    // A scene Box2D cannot represent in single precision is refused, as `impulse box2d` does.
-    require_single_precision(effective, "Box2D",
-                             effective.dt / static_cast<double>(effective.box2d.substeps));
     EngineRun result;
-    const std::unique_ptr<Simulator> simulator = make_box2d_simulator(effective, result.warnings);
+    std::unique_ptr<Simulator> simulator;
+    try {
+        // A scene Box2D cannot represent (single precision, a polygon its skin
+        // would swallow) is what the protocol calls unsupported: a skip with
+        // the sentence naming the JSON path, as an external engine's exit 3.
+        require_single_precision(effective, "Box2D",
+                                 effective.dt / static_cast<double>(effective.box2d.substeps));
+        simulator = make_box2d_simulator(effective, result.warnings);
+    } catch (const InputError& refusal) {
+        result.outcome = EngineRun::Outcome::unsupported;
+        result.message = refusal.what();
+        return result;
+    }
     result.trajectory = record(*simulator, effective);
     const std::string used = overrides_list(overrides);
     if (!used.empty()) {

@@ -43,7 +43,7 @@ std::string golden_path(const Project& project, const EngineSpec& engine,
     return (fs::path(golden_folder(project, engine)) / (scene_name + ".json")).string();
 }
 
-const EngineSpec& engine_named(const Project& project, const std::string& name) {
+EngineSpec engine_named(const Project& project, const std::string& name, bool builtins_too) {
     std::vector<std::string> names;
     for (const EngineSpec& engine : project.engines) {
         if (engine.name == name) {
@@ -51,16 +51,28 @@ const EngineSpec& engine_named(const Project& project, const std::string& name) 
         }
         names.push_back(engine.name);
     }
+    // A verb that runs one engine may also name a built-in one the project
+    // does not list: `conform --engine box2d` scores Box2D in any repository.
+    if (builtins_too && name == "impulse") {
+        return impulse_engine();
+    }
+    if (builtins_too && name == "box2d" && Project::built_with_box2d()) {
+        return box2d_engine();
+    }
+    std::string known = "the project's engines are " + json_fields::list_of(names);
+    if (builtins_too) {
+        known += Project::built_with_box2d() ? ", and the built-in impulse and box2d"
+                                             : ", and the built-in impulse";
+    }
     throw InputError(project.is_implicit() ? "--engine" : project.file,
                      project.is_implicit() ? "" : "engines",
-                     "no engine is named '" + name + "' (--engine); the project's engines are " +
-                         json_fields::list_of(names));
+                     "no engine is named '" + name + "' (--engine); " + known);
 }
 
 std::vector<EngineSpec> engines_chosen(const Project& project,
                                        const std::optional<std::string>& name) {
     if (name) {
-        return {engine_named(project, *name)};
+        return {engine_named(project, *name, false)};
     }
     return project.engines;
 }

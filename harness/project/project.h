@@ -61,8 +61,11 @@ std::string golden_folder(const Project& project, const EngineSpec& engine);
 std::string golden_path(const Project& project, const EngineSpec& engine,
                         const std::string& scene_name);
 
-// The engine named `name` (--engine NAME), or InputError listing the project's engines.
-const EngineSpec& engine_named(const Project& project, const std::string& name);
+// The engine named `name` (--engine NAME): the project's engine of that name;
+// with `builtins_too` (verbs that run one engine and write no golden: run,
+// render, box2d, sweep, conform) also the built-in impulse or box2d. Else
+// InputError listing the names there are.
+EngineSpec engine_named(const Project& project, const std::string& name, bool builtins_too);
 // Every engine, or the one --engine names.
 std::vector<EngineSpec> engines_chosen(const Project& project,
                                        const std::optional<std::string>& name);

@@ -1,4 +1,4 @@
-#include "study_engine.h"
+#include "engine_option.h"
 
 #include <algorithm>
 #include <sstream>
@@ -20,24 +20,9 @@ bool is_engine_name(const std::string& name) {
            });
 }
 
-} // namespace
-
-EngineSpec study_engine(const std::optional<std::string>& name) {
-    if (!name || *name == "impulse") {
-        return impulse_engine();
-    }
-    if (*name == "box2d") {
-        return box2d_engine();
-    }
-    throw UsageError("--engine takes impulse or box2d, got '" + *name + "'");
-}
-
-EngineSpec study_engine(const Arguments& arguments) {
-    const std::optional<std::string> name = arguments.option(engine_option);
-    const std::optional<std::string> command = arguments.option(engine_command_option);
-    if (!command) {
-        return study_engine(name);
-    }
+// An engine given on the command line instead of in impulse.json: a quick
+// try before a project file exists.
+EngineSpec command_engine(const std::optional<std::string>& name, const std::string& command) {
     EngineSpec spec;
     spec.kind = EngineSpec::Kind::external;
     spec.name = name.value_or("external");
@@ -46,16 +31,29 @@ EngineSpec study_engine(const Arguments& arguments) {
                          "letters, digits, '.', '_' or '-', not impulse or box2d, got '" +
                          spec.name + "'");
     }
-    std::istringstream words(*command);
+    std::istringstream words(command);
     for (std::string word; words >> word;) {
         spec.command.push_back(word);
     }
     if (spec.command.empty()) {
-        throw UsageError("--engine-command needs a program to run, got '" + *command + "'");
+        throw UsageError("--engine-command needs a program to run, got '" + command + "'");
     }
     spec.working_directory = ".";
     spec.origin = "--engine-command";
     return spec;
+}
+
+} // namespace
+
+EngineSpec chosen_engine(const Project& project, const Arguments& arguments) {
+    const std::optional<std::string> name = arguments.option(engine_option);
+    if (const std::optional<std::string> command = arguments.option(engine_command_option)) {
+        return command_engine(name, *command);
+    }
+    if (name) {
+        return engine_named(project, *name, true);
+    }
+    return project.engines.front();
 }
 
 } // namespace impulse::harness::cli
