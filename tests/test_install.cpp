@@ -241,3 +241,51 @@ TEST_CASE("cpp-minimal refuses a dynamic polygon with exit 3 and one sentence", 
     CHECK(std::count(refused.err.begin(), refused.err.end(), '\n') == 1);
     CHECK_THAT(refused.err, Catch::Contains("'box' is a polygon"));
 }
+
+TEST_CASE("cpp-minimal gated by the installed impulse: bless, check and conform on the installed "
+          "scenes",
+          "[.][install]") {
+    // A user's repository: the engine built against the package, copied to
+    // bin/ and named in impulse.json by a path relative to the project (it
+    // runs in the project's folder), and copies of two installed scenes.
+    const fs::path share = installed_prefix() / "share" / "impulse" / "scenes";
+    const std::string tool = (installed_prefix() / "bin" / "impulse").string();
+    const TempDir dir;
+    const fs::path project = dir.dir / "project";
+    fs::create_directories(project / "bin");
+    fs::copy_file(cpp_minimal(), project / "bin" / "cpp-minimal");
+    impulse::test::spit(project / "impulse.json",
+                        R"({"schema": "impulse/project@1", "scenes": ["scenes"],
+                            "engines": [{"name": "cpp-minimal", "command": ["bin/cpp-minimal"]}]})");
+    for (const char* name : {"drop-circle", "head-on"}) {
+        impulse::test::spit(project / "scenes" / (std::string(name) + ".json"),
+                            slurp(share / (std::string(name) + ".json")));
+    }
+
+    const Outcome blessed = run_program({tool, "bless", "--root", project.string()});
+    {
+        INFO(blessed.out << blessed.err);
+        REQUIRE(blessed.exit_code == 0);
+    }
+    for (const char* name : {"drop-circle", "head-on"}) {
+        INFO(name);
+        const std::string golden = slurp(project / "goldens" / (std::string(name) + ".json"));
+        CHECK(golden.find("\"engine\": \"cpp-minimal") != std::string::npos);
+    }
+    const Outcome checked = run_program({tool, "check", "--root", project.string()});
+    INFO(checked.out << checked.err);
+    CHECK(checked.exit_code == 0);
+    CHECK_THAT(checked.out, Catch::Contains("2 scenes: 2 passed, 0 failed, 0 errors"));
+
+    // conform finds the shipped scenes beside the installed tool.
+    const Outcome conformed =
+        run_program({tool, "conform", "--engine", "cpp-minimal", "drop-circle", "head-on", "--root",
+                     project.string(), "--json", (dir.dir / "card.json").string()});
+    INFO(conformed.out << conformed.err);
+    CHECK(conformed.exit_code == 0);
+    CHECK_THAT(conformed.out, Catch::Contains("2 scenes: 2 passed, 0 failed, 0 unsupported"));
+    const nlohmann::json card = nlohmann::json::parse(slurp(dir.dir / "card.json"));
+    CHECK(card["engine"] == "cpp-minimal");
+    CHECK(fs::equivalent(card["scenes_dir"].get<std::string>(), share));
+    CHECK(card["passed"] == true);
+}
