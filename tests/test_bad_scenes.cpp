@@ -411,12 +411,17 @@ TEST_CASE("A scene argument that names no scene file is exit 2 and writes nothin
         CHECK(checked.err.empty());
         CHECK(checked.out.find("  ERROR  ") != std::string::npos);
         CHECK(checked.out.find(a.file + ": ") != std::string::npos);
-        // run takes a path: the sentence names the argument as given.
-        const std::string run_file = a.given.empty()                ? std::string("<input>")
-                                     : a.file.rfind(scenes, 0) == 0 ? a.given
-                                                                    : a.file;
-        check_refused(run_tool({"run", a.given}), run_file, "",
-                      a.words == "not valid JSON" ? a.words : "cannot be read");
+        if (a.file.rfind(scenes, 0) == 0) {
+            // run takes a name too, resolved in the project found from the
+            // current folder: the sentence names the file it looked for.
+            const Outcome ran = run_tool({"run", a.given, "--root", r});
+            CHECK(ran.exit_code == 2);
+            CHECK(ran.out.empty());
+            CHECK(ran.err.find(a.file + ": cannot be read") != std::string::npos);
+        } else {
+            check_refused(run_tool({"run", a.given}), a.file, "",
+                          a.words == "not valid JSON" ? a.words : "cannot be read");
+        }
         CHECK(snapshot(dir.dir) == before);
     }
 }

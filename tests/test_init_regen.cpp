@@ -170,3 +170,24 @@ TEST_CASE("regen changes a golden after an intended change and is refused in CI 
     CHECK(slurp(golden) != before);
     require_exit(run_tool_in(p.dir / "src", {"check"}), 0);
 }
+
+TEST_CASE("init --engine-command names the user's engine in the project file, or writes nothing",
+          "[init-regen]") {
+    TempDir temp;
+    const fs::path dir = temp.dir / "mine";
+    const Outcome o = impulse::test::run_tool(
+        {"init", dir.string(), "--engine", "seed", "--engine-command", "python3 engine/run.py"});
+    require_exit(o, 0);
+    CHECK(has(slurp(dir / "impulse.json"),
+              R"({"name": "seed", "command": ["python3", "engine/run.py"], "time_limit": 60})"));
+    CHECK(has(o.out, "impulse conform"));
+
+    // A name the project file refuses is refused by init, and nothing is left.
+    const fs::path other = temp.dir / "other";
+    fs::create_directories(other);
+    const Outcome bad = impulse::test::run_tool(
+        {"init", other.string(), "--engine", "my seed", "--engine-command", "python3 run.py"});
+    require_exit(bad, 2);
+    CHECK(has(bad.err, "engines[0].name"));
+    CHECK(fs::is_empty(other));
+}

@@ -82,16 +82,6 @@ std::string row_name(const SceneCheck& check) {
     return check.engine.empty() ? check.name : check.engine + "/" + check.name;
 }
 
-int parse_count(const std::string& option, const std::string& text, int low) {
-    int value = 0;
-    std::istringstream in(text);
-    if (!(in >> value) || !in.eof() || value < low) {
-        throw UsageError(option + " must be a whole number >= " + std::to_string(low) + ", got '" +
-                         text + "'");
-    }
-    return value;
-}
-
 std::pair<int, int> parse_shard(const std::string& text) {
     const std::size_t slash = text.find('/');
     if (slash == std::string::npos) {
@@ -103,22 +93,6 @@ std::pair<int, int> parse_shard(const std::string& text) {
         throw UsageError("--shard K/N needs K <= N, got '" + text + "'");
     }
     return {k, n};
-}
-
-// "-j 4" and "-j4" are spelled "--jobs 4" for the parser.
-std::vector<std::string> normalise_jobs(const std::vector<std::string>& args) {
-    std::vector<std::string> out;
-    for (const std::string& a : args) {
-        if (a == "-j") {
-            out.push_back("--jobs");
-        } else if (a.size() > 2 && a.compare(0, 2, "-j") == 0) {
-            out.push_back("--jobs");
-            out.push_back(a.substr(2));
-        } else {
-            out.push_back(a);
-        }
-    }
-    return out;
 }
 
 // Checked once, before any scene runs: a bad value is one usage error, not

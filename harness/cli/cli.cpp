@@ -94,6 +94,31 @@ Arguments parse_arguments(const std::vector<std::string>& args,
     return parsed;
 }
 
+std::vector<std::string> normalise_jobs(const std::vector<std::string>& args) {
+    std::vector<std::string> out;
+    for (const std::string& a : args) {
+        if (a == "-j") {
+            out.push_back("--jobs");
+        } else if (a.size() > 2 && a.compare(0, 2, "-j") == 0) {
+            out.push_back("--jobs");
+            out.push_back(a.substr(2));
+        } else {
+            out.push_back(a);
+        }
+    }
+    return out;
+}
+
+int parse_count(const std::string& option, const std::string& text, int low) {
+    int value = 0;
+    std::istringstream in(text);
+    if (!(in >> value) || !in.eof() || value < low) {
+        throw UsageError(option + " must be a whole number >= " + std::to_string(low) + ", got '" +
+                         text + "'");
+    }
+    return value;
+}
+
 double positive_seconds(const std::string& option, const std::string& text) {
     double value = 0.0;
     const char* end = text.data() + text.size();

@@ -37,6 +37,12 @@ Arguments parse_arguments(const std::vector<std::string>& args,
                           const std::vector<std::string>& options_with_value,
                           const std::vector<std::string>& known_flags);
 
+// "-j 4" and "-j4" spelled "--jobs 4" for parse_arguments (check, conform).
+std::vector<std::string> normalise_jobs(const std::vector<std::string>& args);
+
+// A whole number >= low given to `option` (--jobs, --shard), or UsageError.
+int parse_count(const std::string& option, const std::string& text, int low);
+
 // A strictly parsed positive finite number of seconds, or UsageError naming the option.
 double positive_seconds(const std::string& option, const std::string& text);
 // The items of a comma-separated LIST option (--dt 0.01,0.005), or UsageError

@@ -86,31 +86,6 @@ std::vector<EngineSpec> engines_for(const EngineSpec& tested, bool box2d_wanted,
     return engines;
 }
 
-// "-j 4" and "-j4" are spelled "--jobs 4" for the parser (as check's).
-std::vector<std::string> normalise_jobs(const std::vector<std::string>& args) {
-    std::vector<std::string> out;
-    for (const std::string& a : args) {
-        if (a == "-j") {
-            out.push_back("--jobs");
-        } else if (a.size() > 2 && a.compare(0, 2, "-j") == 0) {
-            out.push_back("--jobs");
-            out.push_back(a.substr(2));
-        } else {
-            out.push_back(a);
-        }
-    }
-    return out;
-}
-
-int parse_jobs(const std::string& text) {
-    int value = 0;
-    std::istringstream in(text);
-    if (!(in >> value) || !in.eof() || value < 1) {
-        throw UsageError("--jobs must be a whole number >= 1, got '" + text + "'");
-    }
-    return value;
-}
-
 void write_list(std::ostream& out, const std::string& dir, const std::vector<ShippedScene>& all) {
     std::size_t width = 4;
     std::size_t in = 0;
@@ -185,7 +160,7 @@ int conform_verb(const std::vector<std::string>& raw, std::ostream& out, std::os
     }
     const Project project = find_project(a.option("--root"));
     const EngineSpec tested = chosen_engine(project, a);
-    const int jobs = a.option("--jobs") ? parse_jobs(*a.option("--jobs")) : 1;
+    const int jobs = a.option("--jobs") ? parse_count("--jobs", *a.option("--jobs"), 1) : 1;
 
     // Output paths are refused before anything runs.
     const std::vector<std::string> goldens = protected_folders(project);

@@ -6,7 +6,9 @@
 #include "project.h"
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <ostream>
+#include <sstream>
 
 namespace impulse::harness::cli {
 
@@ -14,7 +16,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* init_help = R"(usage: impulse init [DIR]
+constexpr const char* init_help =
+    R"(usage: impulse init [DIR] [--engine NAME] [--engine-command 'PROGRAM ARGS']
 
 Starts a project in DIR (default: the current folder): writes DIR/impulse.json
 (the project file: scenes in DIR/scenes, goldens in DIR/goldens, one engine
@@ -23,21 +26,35 @@ dropped on the ground, with the exact answer every run is checked against),
 then prints the next steps. Refuses, writing nothing, when either file exists.
 See docs/project-file.md and docs/engine-protocol.md.
 
+  --engine NAME      the engine's name in impulse.json (default my-engine)
+  --engine-command 'PROGRAM ARGS'
+                     your engine's command (split on spaces; run in DIR with the
+                     scene's path appended), instead of the placeholder
+
 Exit: 0 written, 2 a file exists or cannot be written.
 )";
 
-// The placeholder command cannot explain itself in JSON (no comments): the
-// next steps printed on standard output do.
-constexpr const char* starter_project = R"({
-  "schema": "impulse/project@1",
-  "scenes": ["scenes"],
-  "goldens": "goldens",
-  "engines": [
-    {"name": "my-engine", "command": ["./my-engine"], "time_limit": 60}
-  ],
-  "regen": "impulse regen"
+// The project file, with the engine the user named or a placeholder whose
+// command cannot explain itself in JSON (no comments): the next steps
+// printed on standard output do.
+std::string starter_project(const std::string& name, const std::vector<std::string>& command) {
+    // nlohmann::json writes each string with JSON's escapes; the layout is ours.
+    std::string words;
+    for (const std::string& word : command) {
+        words += (words.empty() ? "" : ", ") + nlohmann::json(word).dump();
+    }
+    return "{\n"
+           "  \"schema\": \"impulse/project@1\",\n"
+           "  \"scenes\": [\"scenes\"],\n"
+           "  \"goldens\": \"goldens\",\n"
+           "  \"engines\": [\n"
+           "    {\"name\": " +
+           nlohmann::json(name).dump() + ", \"command\": [" + words +
+           "], \"time_limit\": 60}\n"
+           "  ],\n"
+           "  \"regen\": \"impulse regen\"\n"
+           "}\n";
 }
-)";
 
 // A drop has an exact answer (docs/physics.md): every impact time and the
 // speed after it follow from g, the gap and e alone, so a correct engine
@@ -66,14 +83,20 @@ bool entry_exists(const fs::path& path) {
     return fs::symlink_status(path, error).type() != fs::file_type::not_found;
 }
 
-void print_next_steps(const std::string& project_file, std::ostream& out) {
-    out << "next steps:\n"
-        << "  1. Put your engine behind the gate: in " << project_file << ", engines[0].command\n"
-        << "     [\"./my-engine\"] is a placeholder. Make it the program that runs your engine;\n"
-        << "     it is given a scene file's path and writes the trajectory to standard output\n"
-        << "     (docs/engine-protocol.md). To try the gate with impulse's own engine first,\n"
-        << "     make the engine {\"name\": \"impulse\", \"builtin\": \"impulse\"}.\n"
-        << "  2. impulse bless    runs the scenes and writes goldens/drop.json\n"
+void print_next_steps(const std::string& project_file, bool placeholder, std::ostream& out) {
+    out << "next steps:\n";
+    if (placeholder) {
+        out << "  1. Put your engine behind the gate: in " << project_file
+            << ", engines[0].command\n"
+            << "     [\"./my-engine\"] is a placeholder. Make it the program that runs your "
+               "engine;\n"
+            << "     it is given a scene file's path and writes the trajectory to standard output\n"
+            << "     (docs/engine-protocol.md). To try the gate with impulse's own engine first,\n"
+            << "     make the engine {\"name\": \"impulse\", \"builtin\": \"impulse\"}.\n";
+    } else {
+        out << "  1. impulse conform  scores your engine on the shipped scenes' exact answers\n";
+    }
+    out << "  2. impulse bless    runs the scenes and writes goldens/drop.json\n"
         << "  3. impulse check    the gate: exit 0 while nothing moved, 1 naming the scene,\n"
         << "                      body, channel and time when something did\n"
         << "  4. impulse regen    accepts an intended change (rewrites the goldens)\n";
@@ -82,7 +105,7 @@ void print_next_steps(const std::string& project_file, std::ostream& out) {
 } // namespace
 
 int init_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream&) {
-    const Arguments a = parse_arguments(args, {}, {"--help"});
+    const Arguments a = parse_arguments(args, {"--engine", "--engine-command"}, {"--help"});
     if (a.has_flag("--help")) {
         out << init_help;
         return exit_ok;
@@ -106,16 +129,33 @@ int init_verb(const std::vector<std::string>& args, std::ostream& out, std::ostr
     if (error) {
         throw InputError((dir / "scenes").string(), "", "cannot be made (" + error.message() + ")");
     }
+    std::vector<std::string> command{"./my-engine"};
+    if (const auto given = a.option("--engine-command")) {
+        std::istringstream words(*given);
+        command.clear();
+        for (std::string word; words >> word;) {
+            command.push_back(word);
+        }
+        if (command.empty()) {
+            throw UsageError("--engine-command needs a program to run, got '" + *given + "'");
+        }
+    }
+    const std::string name = a.option("--engine").value_or("my-engine");
     write_file_atomically(scene_file.string(), starter_scene);
     try {
-        write_file_atomically(project_file.string(), starter_project);
+        write_file_atomically(project_file.string(), starter_project(name, command));
+        // The file is read back as every verb will read it: a name the
+        // project file refuses is refused here, with nothing left behind.
+        load_project(project_file.string());
     } catch (const InputError&) {
         fs::remove(scene_file, error); // all or nothing
+        fs::remove(project_file, error);
+        fs::remove(dir / "scenes", error); // only when it is empty: a folder init made
         throw;
     }
     out << "wrote " << printable_path(project_file.string()) << " and "
         << printable_path(scene_file.string()) << "\n\n";
-    print_next_steps(printable_path(project_file.string()), out);
+    print_next_steps(printable_path(project_file.string()), !a.option("--engine-command"), out);
     return exit_ok;
 }
 

@@ -34,27 +34,18 @@ SceneCheck error_row(const std::string& scene_path, const std::exception_ptr& fa
     return row;
 }
 
-std::vector<SceneCheck> check_each(const std::vector<std::string>& scene_paths, int jobs,
-                                   const std::function<SceneCheck(const std::string&)>& check_one) {
-    std::vector<SceneCheck> results(scene_paths.size());
-    const int threads_wanted =
-        std::max(1, std::min<int>(jobs, static_cast<int>(scene_paths.size())));
+void for_each_index(std::size_t count, int jobs, const std::function<void(std::size_t)>& work) {
+    const int threads_wanted = std::max(1, std::min<int>(jobs, static_cast<int>(count)));
     std::atomic<std::size_t> next{0};
     // An exception escaping a thread's function calls std::terminate, so
-    // nothing may: a failure that even its ERROR row cannot be built for
-    // (memory still exhausted) is kept and rethrown on the calling thread,
-    // where the tool turns it into one sentence and exit 2.
+    // nothing may: what escapes `work` is kept and rethrown on the calling
+    // thread, where the tool turns it into one sentence and exit 2.
     std::mutex kept_mutex;
     std::exception_ptr kept;
     auto worker = [&]() noexcept {
         try {
-            for (std::size_t i = next++; i < scene_paths.size(); i = next++) {
-                try {
-                    results[i] = check_one(scene_paths[i]);
-                } catch (...) {
-                    // The failed check's memory is freed by now, so the row can be built.
-                    results[i] = error_row(scene_paths[i], std::current_exception());
-                }
+            for (std::size_t i = next++; i < count; i = next++) {
+                work(i);
             }
         } catch (...) {
             const std::lock_guard<std::mutex> lock(kept_mutex);
@@ -80,6 +71,21 @@ std::vector<SceneCheck> check_each(const std::vector<std::string>& scene_paths, 
     if (kept) {
         std::rethrow_exception(kept);
     }
+}
+
+std::vector<SceneCheck> check_each(const std::vector<std::string>& scene_paths, int jobs,
+                                   const std::function<SceneCheck(const std::string&)>& check_one) {
+    std::vector<SceneCheck> results(scene_paths.size());
+    for_each_index(scene_paths.size(), jobs, [&](std::size_t i) {
+        try {
+            results[i] = check_one(scene_paths[i]);
+        } catch (...) {
+            // The failed check's memory is freed by now, so the row can be
+            // built; a failure even the row cannot be built for (memory still
+            // exhausted) escapes to for_each_index.
+            results[i] = error_row(scene_paths[i], std::current_exception());
+        }
+    });
     return results;
 }
 

@@ -5,12 +5,18 @@
 
 #include "scene_check.h"
 
+#include <cstddef>
 #include <exception>
 #include <functional>
 #include <string>
 #include <vector>
 
 namespace impulse::harness {
+
+// Calls work(i) for every i in [0, count) on up to `jobs` threads (fewer when
+// the system refuses to start more). An exception escaping `work` is rethrown
+// on the calling thread once every thread has stopped, never std::terminate.
+void for_each_index(std::size_t count, int jobs, const std::function<void(std::size_t)>& work);
 
 // Runs check_one for every scene path on up to `jobs` threads (fewer when the
 // system refuses to start more). Any exception escaping check_one becomes

@@ -4,6 +4,7 @@
 
 #include "atomic_file.h"
 #include "input_error.h"
+#include "parallel_check.h"
 #include "strict_json.h"
 #include "text.h"
 
@@ -151,47 +152,17 @@ std::vector<SceneScore> score_scenes(const std::vector<Scene>& scenes,
                                      const std::vector<EngineSpec>& engines,
                                      const ScoringOptions& options) {
     std::vector<SceneScore> scores(scenes.size());
-    const int threads_wanted =
-        std::max(1, std::min<int>(options.jobs, static_cast<int>(scenes.size())));
-    std::atomic<std::size_t> next{0};
     // score_scene turns an engine's failure into its row; what escapes it
-    // (memory exhausted even for that) is kept and rethrown on this thread,
-    // since an exception leaving a thread's function would end the process.
-    std::mutex kept_mutex;
-    std::exception_ptr kept;
-    auto worker = [&]() noexcept {
-        try {
-            for (std::size_t i = next++; i < scenes.size(); i = next++) {
-                if (options.on_start) {
-                    options.on_start(scenes[i].name);
-                }
-                scores[i] = score_scene(scenes[i], engines);
-                if (options.on_done) {
-                    options.on_done();
-                }
-            }
-        } catch (...) {
-            const std::lock_guard<std::mutex> lock(kept_mutex);
-            if (!kept) {
-                kept = std::current_exception();
-            }
+    // (memory exhausted even for that) ends the run with one sentence.
+    for_each_index(scenes.size(), options.jobs, [&](std::size_t i) {
+        if (options.on_start) {
+            options.on_start(scenes[i].name);
         }
-    };
-    std::vector<std::thread> threads;
-    for (int t = 1; t < threads_wanted; ++t) {
-        try {
-            threads.emplace_back(worker);
-        } catch (...) {
-            break; // no more threads: the ones started share the work
+        scores[i] = score_scene(scenes[i], engines);
+        if (options.on_done) {
+            options.on_done();
         }
-    }
-    worker();
-    for (std::thread& t : threads) {
-        t.join();
-    }
-    if (kept) {
-        std::rethrow_exception(kept);
-    }
+    });
     return scores;
 }
 
