@@ -134,9 +134,9 @@ struct FakeProject {
     }
 };
 
-// check, bless and run with the victim failing: `sentence` is the whole
-// message (or its beginning, with `prefix_only`) naming engine, scene and
-// what went wrong.
+// check, bless and run with the victim failing: `sentence` is the message
+// naming engine, scene and what went wrong (a sentence the tool may go on
+// after, as the JSON reader's position in garbage).
 void require_failure_everywhere(const FakeProject& p, const std::string& sentence,
                                 const std::vector<std::string>& env = {}) {
     const std::string fall_golden = slurp(p.golden("fall"));
@@ -201,6 +201,7 @@ TEST_CASE("An engine that hangs is killed at the project's time limit with its p
                                  "(nothing on standard error)";
     const Outcome checked = run_tool_in(p.dir, {"check"});
     require_exit(checked, 2);
+    require_no_stack_trace(checked);
     CHECK(has(checked.out, "ERROR  victim  " + sentence));
     CHECK(has(checked.out, "  ok     fall "));
     // The helper hang.sh started (a grandchild of the tool) died with the group.
