@@ -5,6 +5,7 @@
 // which is a skip), no stack trace, no golden written or destroyed, and the
 // project's other scenes still checked.
 #include "support/files.h"
+#include "support/outcome.h"
 #include "support/tool.h"
 #include "support/tool_in_folder.h"
 
@@ -19,7 +20,9 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using impulse::test::has;
 using impulse::test::Outcome;
+using impulse::test::require_exit;
 using impulse::test::run_tool_in;
 using impulse::test::slurp;
 using impulse::test::spit;
@@ -48,16 +51,6 @@ std::string words(const std::vector<std::string>& command) {
         line += (line.empty() ? "" : " ") + quoted(w);
     }
     return line;
-}
-
-bool has(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
-
-void require_exit(const Outcome& o, int code) {
-    INFO("stdout:\n" << o.out << "stderr:\n" << o.err);
-    REQUIRE(o.exited);
-    REQUIRE(o.exit_code == code);
 }
 
 // What a crash of the tool itself or of Python would leave on its output.

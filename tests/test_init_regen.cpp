@@ -2,6 +2,7 @@
 // project found from the current folder), through the real binary.
 #include "support/bad_input.h"
 #include "support/files.h"
+#include "support/outcome.h"
 #include "support/tool.h"
 #include "support/tool_in_folder.h"
 
@@ -12,7 +13,9 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using impulse::test::has;
 using impulse::test::Outcome;
+using impulse::test::require_exit;
 using impulse::test::run_tool_in;
 using impulse::test::slurp;
 using impulse::test::snapshot;
@@ -20,16 +23,6 @@ using impulse::test::spit;
 using impulse::test::TempDir;
 
 namespace {
-
-void require_exit(const Outcome& o, int code) {
-    INFO("stdout:\n" << o.out << "stderr:\n" << o.err);
-    REQUIRE(o.exited);
-    REQUIRE(o.exit_code == code);
-}
-
-bool has(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
 
 // What init's next steps tell a user who wants to try the gate before
 // wiring their engine: the placeholder engine becomes the builtin one.

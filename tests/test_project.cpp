@@ -5,6 +5,7 @@
 #include "scene_check.h"
 #include "support/bad_input.h"
 #include "support/files.h"
+#include "support/outcome.h"
 #include "support/tool.h"
 #include "support/tool_in_folder.h"
 
@@ -14,7 +15,9 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using impulse::test::has;
 using impulse::test::Outcome;
+using impulse::test::require_exit;
 using impulse::test::run_tool_in;
 using impulse::test::slurp;
 using impulse::test::snapshot;
@@ -43,16 +46,6 @@ struct ProjectDir {
 
 std::string project_with(const std::string& rest) {
     return R"({"schema": "impulse/project@1", )" + rest + "}";
-}
-
-void require_exit(const Outcome& o, int code) {
-    INFO("stdout:\n" << o.out << "stderr:\n" << o.err);
-    REQUIRE(o.exited);
-    REQUIRE(o.exit_code == code);
-}
-
-bool has(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
 }
 
 } // namespace

@@ -8,6 +8,7 @@
 #include "exact_answers.h"
 #include "scene.h"
 #include "support/files.h"
+#include "support/outcome.h"
 #include "support/tool.h"
 #include "support/tool_in_folder.h"
 
@@ -22,7 +23,9 @@
 namespace fs = std::filesystem;
 using impulse::harness::DropLadder;
 using impulse::harness::Scene;
+using impulse::test::has;
 using impulse::test::Outcome;
+using impulse::test::require_exit;
 using impulse::test::run_tool_in;
 using impulse::test::slurp;
 using impulse::test::spit;
@@ -32,16 +35,6 @@ namespace {
 
 const fs::path source_dir = IMPULSE_SOURCE_DIR;
 const fs::path seed_dir = source_dir / "examples" / "engines" / "python-seed";
-
-bool has(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
-
-void require_exit(const Outcome& o, int code) {
-    INFO("stdout:\n" << o.out << "stderr:\n" << o.err);
-    REQUIRE(o.exited);
-    REQUIRE(o.exit_code == code);
-}
 
 // The user's repository: python-seed copied to engine/, impulse.json naming
 // it, and in scenes/ copies of drop-circle and head-on (with their exact
