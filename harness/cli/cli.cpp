@@ -32,9 +32,10 @@ verbs:
                      solver settings, impulse and Box2D
   stress             numerical stability at the extremes: a matrix of built-in
                      scenes, every invariant's worst value against its bound
-  conform --engine ENGINE
+  conform [--engine ENGINE]
                      the conformance suite: the shipped scenes' exact answers and
-                     conservation laws scored in ENGINE, impulse and Box2D beside it
+                     conservation laws scored in ENGINE (default: the project's
+                     first engine), impulse and Box2D beside it
 
 The project: the first impulse.json found from the current folder upwards
 (or in --root DIR) says where the scenes and goldens are and which engines
