@@ -67,6 +67,20 @@ std::string pile_refusal(const std::string& block) {
     return "";
 }
 
+// read_pile after the listed `bodies` of a scene; the refusal as above.
+std::string pile_refusal_with(const std::vector<SceneBody>& listed, const std::string& block) {
+    const nlohmann::json json = nlohmann::json::parse(block);
+    Scene scene = scene_of(listed);
+    scene.listed_bodies = listed.size();
+    try {
+        impulse::harness::scene_reading::read_pile(
+            impulse::harness::scene_reading::Node(json, "pile"), scene);
+    } catch (const impulse::harness::json_fields::FieldError& e) {
+        return e.path + ": " + e.message;
+    }
+    return "";
+}
+
 } // namespace
 
 TEST_CASE("a pile is three walls then count bodies, named in order", "[pile]") {
@@ -200,4 +214,21 @@ TEST_CASE("the pile block is read strictly, naming the JSON path", "[pile]") {
     CHECK(pile_refusal(
               R"({"count": 2, "shape": "box", "size": [1, 2], "density": [0, 1], "spacing": 9})")
               .rfind("pile.density[0]: ", 0) == 0);
+}
+
+TEST_CASE("a listed body in the pile's box is refused at the pile, naming both", "[pile]") {
+    // Two discs of radius 0.5 at spacing 2: pile-0 sits at (-1, 1); a listed
+    // disc of radius 0.25 at (-1, 1.5) overlaps it by 0.25.
+    SceneBody listed;
+    listed.name = "stray";
+    listed.shape = impulse::make_circle(0.25);
+    listed.position = {-1.0, 1.5};
+    listed.mass = 1.0;
+    const std::string block =
+        R"({"count": 2, "shape": "circle", "size": [0.5, 0.5], "spacing": 2})";
+    const std::string refusal = pile_refusal_with({listed}, block);
+    CHECK(refusal.rfind("pile: makes 'pile-0', which overlaps bodies[0] 'stray' at t = 0 by 0.25 m",
+                        0) == 0);
+    listed.position = {-1.0, 1.75}; // touching is allowed
+    CHECK(pile_refusal_with({listed}, block) == "");
 }
