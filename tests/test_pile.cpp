@@ -7,9 +7,7 @@
 #include "scene.h"
 #include "scene_pile_block.h"
 #include "scene_reading.h"
-#include "support/files.h"
 
-#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
@@ -233,39 +231,4 @@ TEST_CASE("a listed body in the pile's box is refused at the pile, naming both",
                         0) == 0);
     listed.position = {-1.0, 1.75}; // touching is allowed
     CHECK(pile_refusal_with({listed}, block) == "");
-}
-
-TEST_CASE("the pile scale scenes' blocks make their piles with nothing touching", "[pile]") {
-    // harness/scenes/scale/pile-{discs,boxes}-N.json load once the top-level
-    // key "pile" and resting with local stepping are accepted (issue 14, P4);
-    // their blocks are read here as the loader will read them.
-    for (const std::string kind : {"discs", "boxes"}) {
-        for (const int count : {100, 1000, 10000}) {
-            const std::string name = "pile-" + kind + "-" + std::to_string(count);
-            INFO(name);
-            const nlohmann::json document = nlohmann::json::parse(impulse::test::slurp(
-                std::string(IMPULSE_SOURCE_DIR) + "/harness/scenes/scale/" + name + ".json"));
-            CHECK(document.at("name") == name);
-            Scene scene;
-            impulse::harness::scene_reading::read_pile(
-                impulse::harness::scene_reading::Node(document.at("pile"), "pile"), scene);
-            REQUIRE(scene.bodies.size() == static_cast<std::size_t>(count) + 3);
-            CHECK(scene.pile->kinds ==
-                  (kind == "discs" ? PileSpec::Kinds::circle : PileSpec::Kinds::box));
-            CHECK_NOTHROW(impulse::harness::scene_reading::reject_initial_overlaps(scene));
-            if (count <= 1000) {
-                CHECK_FALSE(impulse::harness::deepest_overlap(
-                    scene.bodies, impulse::harness::initial_poses(scene.bodies)));
-            }
-            // Sizes 1:5 and densities 1:4: masses within 1:100.
-            double lightest = scene.bodies[3].mass;
-            double heaviest = lightest;
-            for (std::size_t i = 3; i < scene.bodies.size(); ++i) {
-                lightest = std::min(lightest, scene.bodies[i].mass);
-                heaviest = std::max(heaviest, scene.bodies[i].mass);
-            }
-            CHECK(heaviest / lightest <= 100.0);
-            CHECK(heaviest / lightest > 50.0);
-        }
-    }
 }
