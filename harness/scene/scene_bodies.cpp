@@ -168,8 +168,8 @@ void read_bodies(const Node& root, Scene& scene) {
     const std::optional<Node> pile = optional_member(root, "pile");
     if (!listed && !gas && !pile) {
         json_fields::fail("bodies",
-                          "is required but missing; a scene lists its bodies, has a gas or a "
-                          "pile block, or both");
+                          "is required but missing; a scene lists its bodies, has a gas block, "
+                          "or both (a pile block may stand in for the gas block)");
     }
     NameIndex names;
     if (listed) {
