@@ -176,7 +176,7 @@ TEST_CASE("rejected expectations: the list and the common keys", "[scene]") {
         require_rejected(expecting(R"([{"kind": "bounce", "rtol": 1e-9}])"), "expectations[0].kind",
                          "must be one of \"drop\", \"corner-impact\", \"head-on\", \"conserved\", "
                          "\"energy-non-increasing\", \"momentum-balance\", \"event\", "
-                         "\"state\", got \"bounce\"");
+                         "\"state\", \"max-overlap\", \"at-rest\", got \"bounce\"");
     }
     SECTION("kind not a string") {
         require_rejected(expecting(R"([{"kind": 3, "rtol": 1e-9}])"), "expectations[0].kind",

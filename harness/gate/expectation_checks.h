@@ -160,4 +160,8 @@ void check_momentum_balance(const Scene& scene, const Trajectory& trajectory, Ch
 void check_event(const Trajectory& trajectory, Checks& checks);
 void check_state(const Scene& scene, const Trajectory& trajectory, Checks& checks);
 
+// What "settled" means for a pile (rest_expectations.cpp).
+void check_max_overlap(const Scene& scene, const Trajectory& trajectory, Checks& checks);
+void check_at_rest(const Scene& scene, const Trajectory& trajectory, Checks& checks);
+
 } // namespace impulse::harness

@@ -29,6 +29,8 @@ std::string subject_of(const Expectation& x) {
     case Expectation::Kind::conserved:
     case Expectation::Kind::energy_non_increasing:
     case Expectation::Kind::momentum_balance:
+    case Expectation::Kind::max_overlap:
+    case Expectation::Kind::at_rest:
         return "";
     case Expectation::Kind::event:
         return "event " + std::to_string(x.index);
@@ -69,6 +71,12 @@ std::vector<ExpectationResult> evaluate_expectations(const Scene& scene,
             break;
         case Expectation::Kind::state:
             check_state(scene, trajectory, checks);
+            break;
+        case Expectation::Kind::max_overlap:
+            check_max_overlap(scene, trajectory, checks);
+            break;
+        case Expectation::Kind::at_rest:
+            check_at_rest(scene, trajectory, checks);
             break;
         }
     }

@@ -43,6 +43,8 @@ struct Expectation {
         momentum_balance,      // momentum changes only by the static bodies' impulses
         event,                 // literal values of one collision event
         state,                 // literal values of one body at one frame time
+        max_overlap,           // no pair interpenetrates deeper than atol in any frame
+        at_rest,               // after `t`, kinetic energy <= rtol x energy released + atol
     };
     Kind kind = Kind::conserved;
     std::string path;                    // JSON path of this expectation, e.g. "expectations[2]"
@@ -52,7 +54,7 @@ struct Expectation {
     int impacts = 0;                     // drop: how many impacts to check
     std::vector<std::string> quantities; // conserved: "momentum", "angular_momentum", "energy"
     std::size_t index = 0;               // event: which event (0-based)
-    double t = 0.0;                      // state: the frame time
+    double t = 0.0;                      // state: the frame time; at_rest: "after"
     // event / state: field name -> expected value ("t", "impulse", "vn_before",
     // "vn_after", "point.x", "normal.y", ...; "x", "y", "angle", "vx", "vy", "omega").
     std::vector<std::pair<std::string, double>> values;
@@ -106,6 +108,25 @@ struct GasSpec {
     double wall_thickness = 1.0;
 };
 
+// The scene's "pile" block as read: `count` bodies at rest on a lattice in an
+// open box of three static walls, their kinds, sizes, densities and angles
+// drawn from splitmix64 (docs/formats.md, "The pile block"; harness/scene/pile.h
+// generates it).
+struct PileSpec {
+    enum class Kinds { circle, box, mixed };
+    int count = 0;
+    Kinds kinds = Kinds::circle;
+    double size_min = 0.0; // m: a circle's radius, a square box's half side
+    double size_max = 0.0;
+    double density_min = 1.0; // kg/m^2
+    double density_max = 1.0;
+    double spacing = 0.0;       // m between lattice sites
+    int columns = 0;            // 0: the smallest k with k * k >= count
+    bool random_angles = false; // angles uniform in [-pi, pi), else 0
+    std::uint64_t seed = 1;
+    double wall_thickness = 1.0;
+};
+
 struct Scene {
     std::string file; // as given on the command line, for messages
     std::string name;
@@ -116,9 +137,11 @@ struct Scene {
     double duration = 0.0;
     SolverSettings solver;
     // The file's "bodies", then, with a "gas" block, its four walls and its
-    // count bodies (gas.h, generate_gas).
+    // count bodies (gas.h, generate_gas); with a "pile" block, its three walls
+    // and its count bodies (pile.h, generate_pile).
     std::vector<SceneBody> bodies;
     std::optional<GasSpec> gas;            // the "gas" block, when there is one
+    std::optional<PileSpec> pile;          // the "pile" block, when there is one
     std::size_t listed_bodies = 0;         // how many of `bodies` the file's "bodies" array lists
     Tolerances tolerances;                 // "tolerance": per channel, empty when not given
     std::vector<Expectation> expectations; // "expectations", in file order

@@ -1,6 +1,7 @@
 // The "bodies" of a scene: names, shapes, positions and mass properties; then,
 // with the gas block's bodies appended, the overlap check at t = 0.
 #include "rotation.h"
+#include "scene_pile_block.h"
 #include "scene_reading.h"
 
 #include <algorithm>
@@ -159,21 +160,26 @@ void read_listed_bodies(const Node& node, Scene& scene, bool has_gas, NameIndex&
 
 } // namespace
 
-// "bodies" and "gas": the listed bodies, then the gas block's.
+// "bodies", "gas" and "pile": the listed bodies, then the gas block's or the
+// pile block's.
 void read_bodies(const Node& root, Scene& scene) {
     const std::optional<Node> listed = optional_member(root, "bodies");
     const std::optional<Node> gas = optional_member(root, "gas");
-    if (!listed && !gas) {
+    const std::optional<Node> pile = optional_member(root, "pile");
+    if (!listed && !gas && !pile) {
         json_fields::fail("bodies",
                           "is required but missing; a scene lists its bodies, has a gas block, "
-                          "or both");
+                          "or both (a pile block may stand in for the gas block)");
     }
     NameIndex names;
     if (listed) {
-        read_listed_bodies(*listed, scene, gas.has_value(), names);
+        read_listed_bodies(*listed, scene, gas.has_value() || pile.has_value(), names);
     }
     if (gas) {
         read_gas(*gas, scene);
+    }
+    if (pile) {
+        read_pile(*pile, scene);
     }
     reject_initial_overlaps(scene);
 }

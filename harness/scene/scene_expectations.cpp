@@ -176,6 +176,29 @@ void validate_state(const Node& node, const Scene& scene, Expectation& expectati
     }
 }
 
+// A depth in metres has no scale to be relative to: atol alone.
+void validate_max_overlap(const Node& node, const Scene&, Expectation&) {
+    if (node.has("rtol")) {
+        node.member("rtol").fail("max-overlap judges a depth in metres against atol alone; "
+                                 "remove rtol and give atol");
+    }
+}
+
+// "after": the time from which every frame is judged, within the run so that
+// at least one frame is; rtol is the fraction of the released energy allowed.
+void validate_at_rest(const Node& node, const Scene& scene, Expectation& expectation) {
+    const Node after = required_member(node, "after");
+    expectation.t = read_non_negative(after);
+    if (expectation.t > scene.duration) {
+        after.fail("must be at most the scene's duration " + number_text(scene.duration) +
+                   " s, so that some frame is judged, got " + number_text(expectation.t));
+    }
+    if (!node.has("rtol")) {
+        node.fail("an at-rest expectation must give rtol, the fraction of the released energy "
+                  "the kinetic energy may keep (atol, in J, is optional)");
+    }
+}
+
 struct ExpectationKind {
     const char* name;
     Expectation::Kind kind;
@@ -201,6 +224,8 @@ const std::vector<ExpectationKind>& expectation_kinds() {
          Expectation::Kind::state,
          {"body", "t", "x", "y", "angle", "vx", "vy", "omega"},
          validate_state},
+        {"max-overlap", Expectation::Kind::max_overlap, {}, validate_max_overlap},
+        {"at-rest", Expectation::Kind::at_rest, {"after"}, validate_at_rest},
     };
     return kinds;
 }

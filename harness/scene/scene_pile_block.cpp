@@ -1,0 +1,175 @@
+// The "pile" block (docs/formats.md, "The pile block"): read and validated here,
+// its bodies made by generate_pile (pile.h).
+#include "scene_pile_block.h"
+
+#include "manifold.h"
+#include "overlap.h"
+#include "pile.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <iterator>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace impulse::harness::scene_reading {
+
+namespace {
+
+// The gas block's bounds (scene_gas_block.cpp says why).
+constexpr long long max_pile_count = 100000;
+constexpr long long max_pile_seed = 9007199254740992;
+
+const std::vector<std::string> pile_keys = {"count",         "shape",   "size",
+                                            "density",       "spacing", "columns",
+                                            "random_angles", "seed",    "wall_thickness"};
+
+// Whether `name` is one the pile block gives a body: a wall's, or pile-N with
+// N < count written without leading zeros.
+bool is_pile_name(const std::string& name, int count) {
+    for (const char* wall : {"floor", "wall-left", "wall-right"}) {
+        if (name == wall) {
+            return true;
+        }
+    }
+    const std::string prefix = "pile-";
+    if (name.rfind(prefix, 0) != 0 || name.size() == prefix.size() ||
+        name.size() > prefix.size() + 6) {
+        return false;
+    }
+    const std::string digits = name.substr(prefix.size());
+    if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }) ||
+        (digits.size() > 1 && digits[0] == '0')) {
+        return false;
+    }
+    return std::stol(digits) < count;
+}
+
+PileSpec::Kinds read_kinds(const Node& node) {
+    const std::vector<std::pair<std::string, PileSpec::Kinds>> names = {
+        {"circle", PileSpec::Kinds::circle},
+        {"box", PileSpec::Kinds::box},
+        {"mixed", PileSpec::Kinds::mixed}};
+    for (const auto& [name, kinds] : names) {
+        if (node.json().is_string() && node.json().get<std::string>() == name) {
+            return kinds;
+        }
+    }
+    node.fail("must be one of \"circle\", \"box\" or \"mixed\", got " + shown(node));
+}
+
+// [min, max]: two positive numbers, min <= max.
+std::pair<double, double> read_range(const Node& node, const std::string& unit) {
+    require_array(node);
+    if (node.json().size() != 2) {
+        node.fail("must be [min, max] in " + unit + ", got " + std::to_string(node.json().size()) +
+                  " values");
+    }
+    const double lo = read_positive(node.element(0));
+    const double hi = read_positive(node.element(1));
+    if (!(lo <= hi)) {
+        node.fail("must be [min, max] with min <= max, got [" + number_text(lo) + ", " +
+                  number_text(hi) + "]");
+    }
+    return {lo, hi};
+}
+
+// The lattice's width and height with the walls, finite; the spacing wide
+// enough that no two bodies can overlap at any angle.
+void check_geometry(const Node& node, const PileSpec& pile) {
+    const Node spacing = node.member("spacing");
+    const double diameter = pile_largest_diameter(pile);
+    if (!(pile.spacing > diameter)) {
+        spacing.fail("must be more than the largest body's bounding diameter " +
+                     number_text(diameter) +
+                     " m (twice size[1], times sqrt(2) when boxes are drawn), so that no two "
+                     "bodies overlap at any angle, got " +
+                     number_text(pile.spacing));
+    }
+    const double width = static_cast<double>(pile_columns(pile)) * pile.spacing;
+    const double height = static_cast<double>(pile_rows(pile)) * pile.spacing;
+    if (!std::isfinite(width + 2.0 * pile.wall_thickness) ||
+        !std::isfinite(2.0 * height + pile.wall_thickness)) {
+        spacing.fail("gives a box " + number_text(width) + " m wide and " +
+                     number_text(2.0 * height) + " m tall; it must be finite");
+    }
+}
+
+// A listed body in the pile's way. The loader's overlap check would name it
+// at "gas", the gas block's path; here the sentence names the pile. Listed
+// bodies are few, so every pair with one is tested: O(listed x count).
+void reject_listed_overlaps(const Node& node, const Scene& scene,
+                            const std::vector<SceneBody>& made) {
+    const std::vector<Transform> listed = initial_poses(scene.bodies);
+    const std::vector<Transform> poses = initial_poses(made);
+    for (std::size_t i = 0; i < scene.listed_bodies; ++i) {
+        for (std::size_t n = 0; n < made.size(); ++n) {
+            if (scene.bodies[i].is_static && made[n].is_static) {
+                continue;
+            }
+            const double gap =
+                separation(scene.bodies[i].shape, listed[i], made[n].shape, poses[n]);
+            if (gap < 0.0) {
+                node.fail("makes '" + made[n].name + "', which overlaps bodies[" +
+                          std::to_string(i) + "] '" + scene.bodies[i].name + "' at t = 0 by " +
+                          number_text(-gap) + " m; move that body out of the pile's box");
+            }
+        }
+    }
+}
+
+} // namespace
+
+void read_pile(const Node& node, Scene& scene) {
+    require_object(node);
+    reject_unknown_keys(node, pile_keys);
+    if (scene.gas) {
+        node.fail("a scene has a gas block or a pile block, not both (both name walls "
+                  "wall-left and wall-right)");
+    }
+    PileSpec pile;
+    pile.count = static_cast<int>(read_whole(required_member(node, "count"), 1, max_pile_count));
+    pile.kinds = read_kinds(required_member(node, "shape"));
+    std::tie(pile.size_min, pile.size_max) = read_range(required_member(node, "size"), "m");
+    if (const std::optional<Node> density = optional_member(node, "density")) {
+        std::tie(pile.density_min, pile.density_max) = read_range(*density, "kg/m^2");
+    }
+    pile.spacing = read_positive(required_member(node, "spacing"));
+    if (const std::optional<Node> columns = optional_member(node, "columns")) {
+        pile.columns = static_cast<int>(read_whole(*columns, 1, max_pile_count));
+    }
+    pile.random_angles = read_bool_or(node, "random_angles", false);
+    if (const std::optional<Node> seed = optional_member(node, "seed")) {
+        pile.seed = static_cast<std::uint64_t>(read_whole(*seed, 0, max_pile_seed));
+    }
+    pile.wall_thickness = read_positive_or(node, "wall_thickness", pile.wall_thickness);
+    check_geometry(node, pile);
+    for (std::size_t i = 0; i < scene.listed_bodies; ++i) {
+        if (is_pile_name(scene.bodies[i].name, pile.count)) {
+            node.fail("makes a body named \"" + scene.bodies[i].name +
+                      "\", which is already the name of bodies[" + std::to_string(i) +
+                      "]; body names must be unique (the pile block's are floor, wall-left, "
+                      "wall-right and pile-0 to pile-" +
+                      std::to_string(pile.count - 1) + ")");
+        }
+    }
+    std::vector<SceneBody> made = generate_pile(pile);
+    // A body's mass from a tiny size and density could underflow to 0.
+    for (const SceneBody& body : made) {
+        if (!body.is_static && !(body.mass > 0.0 && body.inertia > 0.0 &&
+                                 std::isfinite(body.mass) && std::isfinite(body.inertia))) {
+            node.fail("gives '" + body.name + "' a mass of " + number_text(body.mass) +
+                      " kg and a moment of inertia of " + number_text(body.inertia) +
+                      " kg m^2; both must be finite and > 0 (change size or density)");
+        }
+    }
+    reject_listed_overlaps(node, scene, made);
+    scene.bodies.insert(scene.bodies.end(), std::make_move_iterator(made.begin()),
+                        std::make_move_iterator(made.end()));
+    scene.pile = pile;
+}
+
+} // namespace impulse::harness::scene_reading
