@@ -7,6 +7,8 @@
 #include "scene.h"
 #include "scene_pile_block.h"
 #include "scene_reading.h"
+#include "support/files.h"
+#include "support/outcome.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -231,4 +233,21 @@ TEST_CASE("a listed body in the pile's box is refused at the pile, naming both",
                         0) == 0);
     listed.position = {-1.0, 1.75}; // touching is allowed
     CHECK(pile_refusal_with({listed}, block) == "");
+}
+
+TEST_CASE("a scene file with a pile block runs through the real tool", "[pile]") {
+    // 12 discs of radius 0.1 on a 4-column lattice, spacing 0.3: one step of
+    // free fall, so the trajectory has a column block per generated body.
+    impulse::test::TempDir dir;
+    impulse::test::spit(dir.dir / "heap.json",
+                        R"({"schema": "impulse/scene@1", "name": "heap", "dt": 0.01,
+  "duration": 0.01, "pile": {"count": 12, "shape": "circle", "size": [0.1, 0.1],
+  "spacing": 0.3, "columns": 4}})");
+    const impulse::test::Outcome ran =
+        impulse::test::run_tool({"run", (dir.dir / "heap.json").string()});
+    impulse::test::require_exit(ran, 0);
+    const nlohmann::json trajectory = nlohmann::json::parse(ran.out);
+    CHECK(trajectory.at("columns").size() == 1 + 6 * 12);
+    CHECK(trajectory.at("columns")[1] == "pile-0.x");
+    CHECK(trajectory.at("frames").size() == 2);
 }

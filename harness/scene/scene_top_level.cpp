@@ -132,8 +132,8 @@ void read_solver(const Node& node, SolverSettings& solver) {
 }
 
 const std::vector<std::string> scene_keys = {
-    "schema", "name",   "description", "gravity",   "restitution",  "dt",   "duration",
-    "solver", "bodies", "gas",         "tolerance", "expectations", "box2d"};
+    "schema", "name",   "description", "gravity", "restitution", "dt",           "duration",
+    "solver", "bodies", "gas",         "pile",    "tolerance",   "expectations", "box2d"};
 
 } // namespace
 
