@@ -4,6 +4,8 @@
 // another implementation following docs/formats.md gets the same bits.
 #include "gas.h"
 
+#include "generated_bodies.h"
+
 #include <algorithm>
 #include <cstddef>
 #include <string>
@@ -21,15 +23,6 @@ constexpr double pi = 3.141592653589793;
 // 2, and subtracting 1 from it needs no rounding.
 double symmetric(double u) {
     return 2.0 * u - 1.0;
-}
-
-SceneBody wall(const std::string& name, Vec2 position, double hx, double hy) {
-    SceneBody body;
-    body.name = name;
-    body.is_static = true;
-    body.shape = make_box(hx, hy);
-    body.position = position;
-    return body;
 }
 
 } // namespace
@@ -76,10 +69,10 @@ std::vector<SceneBody> generate_gas(const GasSpec& gas) {
     bodies.reserve(static_cast<std::size_t>(gas.count) + 4);
     // The side walls span the outer height, h + w each way, so the corners are
     // closed; they overlap the bottom and top walls there, which static bodies may.
-    bodies.push_back(wall("wall-bottom", {0.0, -centre}, h, t));
-    bodies.push_back(wall("wall-top", {0.0, centre}, h, t));
-    bodies.push_back(wall("wall-left", {-centre, 0.0}, t, h + gas.wall_thickness));
-    bodies.push_back(wall("wall-right", {centre, 0.0}, t, h + gas.wall_thickness));
+    bodies.push_back(static_wall("wall-bottom", {0.0, -centre}, h, t));
+    bodies.push_back(static_wall("wall-top", {0.0, centre}, h, t));
+    bodies.push_back(static_wall("wall-left", {-centre, 0.0}, t, h + gas.wall_thickness));
+    bodies.push_back(static_wall("wall-right", {centre, 0.0}, t, h + gas.wall_thickness));
 
     SplitMix64 random(gas.seed);
     for (int n = 0; n < gas.count; ++n) {

@@ -5,6 +5,7 @@
 #include "pile.h"
 
 #include "gas.h"
+#include "generated_bodies.h"
 
 #include <cmath>
 #include <string>
@@ -20,15 +21,6 @@ constexpr double pi = 3.141592653589793;
 // sqrt(2) rounded to the nearest double, written out so that the bound does
 // not depend on a library.
 constexpr double sqrt2 = 1.4142135623730951;
-
-SceneBody wall(const std::string& name, Vec2 position, double hx, double hy) {
-    SceneBody body;
-    body.name = name;
-    body.is_static = true;
-    body.shape = make_box(hx, hy);
-    body.position = position;
-    return body;
-}
 
 // lo + (hi - lo) u: lo when the range is empty, whatever u.
 double between(double lo, double hi, double u) {
@@ -62,9 +54,9 @@ std::vector<SceneBody> generate_pile(const PileSpec& spec) {
     bodies.reserve(static_cast<std::size_t>(spec.count) + 3);
     // The floor's top is y = 0 and it runs under both walls; the walls stand on
     // it, inner faces at x = -W/2 and W/2, 2 H tall (twice the lattice).
-    bodies.push_back(wall("floor", {0.0, -t}, half + spec.wall_thickness, t));
-    bodies.push_back(wall("wall-left", {-(half + t), height}, t, height));
-    bodies.push_back(wall("wall-right", {half + t, height}, t, height));
+    bodies.push_back(static_wall("floor", {0.0, -t}, half + spec.wall_thickness, t));
+    bodies.push_back(static_wall("wall-left", {-(half + t), height}, t, height));
+    bodies.push_back(static_wall("wall-right", {half + t, height}, t, height));
 
     SplitMix64 random(spec.seed);
     for (int n = 0; n < spec.count; ++n) {

@@ -1,6 +1,7 @@
 // The "gas" block (docs/formats.md, "The gas block"): read and validated here,
 // its bodies made by generate_gas (gas.h).
 #include "gas.h"
+#include "generated_bodies.h"
 #include "scene_reading.h"
 
 #include <algorithm>
@@ -31,27 +32,6 @@ const std::vector<std::string> gas_keys = {"count",
                                            "random_angles",
                                            "seed",
                                            "wall_thickness"};
-
-// Whether `name` is one the gas block gives a body: a wall's, or gas-N with
-// N < count written without leading zeros.
-bool is_gas_name(const std::string& name, int count) {
-    for (const char* wall : {"wall-bottom", "wall-top", "wall-left", "wall-right"}) {
-        if (name == wall) {
-            return true;
-        }
-    }
-    const std::string prefix = "gas-";
-    if (name.rfind(prefix, 0) != 0 || name.size() == prefix.size() ||
-        name.size() > prefix.size() + 6) {
-        return false;
-    }
-    const std::string digits = name.substr(prefix.size());
-    if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }) ||
-        (digits.size() > 1 && digits[0] == '0')) {
-        return false;
-    }
-    return std::stol(digits) < count;
-}
 
 // The gas's mass and inertia, from mass or density (default 1) as for a body.
 void read_gas_mass(const Node& node, GasSpec& gas) {
@@ -128,7 +108,9 @@ void read_gas(const Node& node, Scene& scene) {
                   " m wide with its walls; it must be finite");
     }
     for (std::size_t i = 0; i < scene.listed_bodies; ++i) {
-        if (is_gas_name(scene.bodies[i].name, gas.count)) {
+        if (is_generated_name(scene.bodies[i].name,
+                              {"wall-bottom", "wall-top", "wall-left", "wall-right"}, "gas-",
+                              gas.count)) {
             node.fail("makes a body named \"" + scene.bodies[i].name +
                       "\", which is already the name of bodies[" + std::to_string(i) +
                       "]; body names must be unique (the gas block's are wall-bottom, wall-top, "

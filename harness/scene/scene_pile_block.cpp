@@ -2,6 +2,7 @@
 // its bodies made by generate_pile (pile.h).
 #include "scene_pile_block.h"
 
+#include "generated_bodies.h"
 #include "manifold.h"
 #include "overlap.h"
 #include "pile.h"
@@ -26,27 +27,6 @@ constexpr long long max_pile_seed = 9007199254740992;
 const std::vector<std::string> pile_keys = {"count",         "shape",   "size",
                                             "density",       "spacing", "columns",
                                             "random_angles", "seed",    "wall_thickness"};
-
-// Whether `name` is one the pile block gives a body: a wall's, or pile-N with
-// N < count written without leading zeros.
-bool is_pile_name(const std::string& name, int count) {
-    for (const char* wall : {"floor", "wall-left", "wall-right"}) {
-        if (name == wall) {
-            return true;
-        }
-    }
-    const std::string prefix = "pile-";
-    if (name.rfind(prefix, 0) != 0 || name.size() == prefix.size() ||
-        name.size() > prefix.size() + 6) {
-        return false;
-    }
-    const std::string digits = name.substr(prefix.size());
-    if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }) ||
-        (digits.size() > 1 && digits[0] == '0')) {
-        return false;
-    }
-    return std::stol(digits) < count;
-}
 
 PileSpec::Kinds read_kinds(const Node& node) {
     const std::vector<std::pair<std::string, PileSpec::Kinds>> names = {
@@ -148,7 +128,8 @@ void read_pile(const Node& node, Scene& scene) {
     pile.wall_thickness = read_positive_or(node, "wall_thickness", pile.wall_thickness);
     check_geometry(node, pile);
     for (std::size_t i = 0; i < scene.listed_bodies; ++i) {
-        if (is_pile_name(scene.bodies[i].name, pile.count)) {
+        if (is_generated_name(scene.bodies[i].name, {"floor", "wall-left", "wall-right"}, "pile-",
+                              pile.count)) {
             node.fail("makes a body named \"" + scene.bodies[i].name +
                       "\", which is already the name of bodies[" + std::to_string(i) +
                       "]; body names must be unique (the pile block's are floor, wall-left, "
