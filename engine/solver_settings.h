@@ -38,6 +38,16 @@ inline constexpr int vertex_normal_count = 2;
 enum class Stepping { world, local };
 inline constexpr int stepping_count = 2;
 
+// How `resting: true` holds bodies in contact (docs/engine.md, "Dense contact").
+// events: the event-driven model (collisions found by the time-of-impact search,
+// resting points held by acceleration-level contact forces), exact where it
+// applies. time_stepping: Moreau and Jean's velocity-level contact per step and
+// per island, with Newton's law at impacts; no event search, so no Zeno
+// cascade. automatic: events where they carry the scene, time-stepping from the
+// step where they cannot (and from the start for local stepping or large piles).
+enum class RestingMethod { automatic, events, time_stepping };
+inline constexpr int resting_method_count = 3;
+
 struct SolverSettings {
     Integrator integrator = Integrator::euler;
     TimeOfImpactMethod toi = TimeOfImpactMethod::bisection;
@@ -52,6 +62,7 @@ struct SolverSettings {
     // End Zeno cascades and hold resting bodies with contact forces
     // (docs/engine.md, "Resting contact").
     bool resting = false;
+    RestingMethod resting_method = RestingMethod::automatic; // only with resting
     // Work bounds that turn a stall into a clear error instead of a hang.
     // Bounds every search the step makes: the bisection's halvings, the secant
     // search's trials and ccd's samples of one pair's sweep.

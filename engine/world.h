@@ -31,6 +31,15 @@ struct WorkCounters {
     // Local stepping: pairs found already interpenetrating and separating at the
     // start of their search, left to separate (docs/engine.md, "Local stepping").
     long long missed_grazes = 0;
+    // Dense contact by time-stepping (docs/engine.md, "Dense contact").
+    long long time_stepping_steps = 0;  // steps taken by the time-stepping method
+    long long islands = 0;              // contact islands solved, summed over steps
+    long long island_points = 0;        // contact points in those islands
+    long long direct_solves = 0;        // island problems solved by pivoting (solve_lcp)
+    long long solver_sweeps = 0;        // projected Gauss-Seidel sweeps
+    long long unconverged_islands = 0;  // iterative solves stopped by the sweep cap
+    long long overlap_guard_passes = 0; // position corrections after a step
+    long long energy_guard_steps = 0;   // islands whose energy rise was removed
 };
 
 // Scratch memory of local stepping, kept between steps so a step allocates nothing.
