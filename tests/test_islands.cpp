@@ -134,6 +134,26 @@ TEST_CASE("islands are the same bits for reused scratch and for shuffled links",
     IslandScratch scratch;
     find_islands(bodies, links, first, scratch);
     REQUIRE(first.count() > 10); // a graph this sparse splits into many islands
+    // Every link's dynamic bodies are in the island that lists the link, every
+    // listed body is dynamic, and the islands' smallest bodies ascend.
+    std::vector<int> island_of(bodies.size(), -1);
+    for (int k = 0; k < first.count(); ++k) {
+        for (const int b : bodies_of(first, k)) {
+            CHECK(!bodies[static_cast<std::size_t>(b)].is_static());
+            island_of[static_cast<std::size_t>(b)] = k;
+        }
+        if (k > 0) {
+            CHECK(bodies_of(first, k - 1).front() < bodies_of(first, k).front());
+        }
+        for (const int l : links_of(first, k)) {
+            for (const int b :
+                 {links[static_cast<std::size_t>(l)].a, links[static_cast<std::size_t>(l)].b}) {
+                if (!bodies[static_cast<std::size_t>(b)].is_static()) {
+                    CHECK(island_of[static_cast<std::size_t>(b)] == k);
+                }
+            }
+        }
+    }
     Islands again;
     find_islands(bodies, links, again, scratch);
     CHECK(same(first, again));
