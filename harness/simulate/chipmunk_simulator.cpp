@@ -57,7 +57,9 @@ std::string short_number(double value) {
 // Debian's Chipmunk, built without NDEBUG, prints a two-line banner with
 // printf the first time a process creates a space: on standard output, where
 // `impulse run` writes the trajectory. So the first space is created, and
-// freed, with standard output pointed at /dev/null for that moment.
+// freed, with standard output pointed at /dev/null for that moment. Nothing
+// else writes there meanwhile: the workers of a parallel check print nothing,
+// and call_once holds back any other thread's first space until it is done.
 void swallow_debug_banner() {
     static std::once_flag once;
     std::call_once(once, [] {
