@@ -74,7 +74,6 @@ function createWorld(B, scene) {
   const def = B.b2DefaultWorldDef();
   def.gravity = new B.b2Vec2(scene.gravity[0], scene.gravity[1]);
   def.restitutionThreshold = 0; // the default 1 m/s turns slower bounces into e = 0
-  def.hitEventThreshold = 0;
   def.enableSleep = false;
   def.enableContinuous = scene.ccd; // Box2D sweeps against static bodies only when asked
   def.contactHertz = contactHertz;
@@ -110,8 +109,6 @@ function createBody(B, world, body, restitution, ccd) {
   shapeDef.material.restitution = restitution; // Box2D mixes restitutions with max: the pair gets e
   shapeDef.density = 0;
   shapeDef.updateBodyMass = false; // the scene's mass and inertia, set below
-  shapeDef.enableContactEvents = true;
-  shapeDef.enableHitEvents = true;
   const shapeId = body.shape.kind === "circle"
     ? B.b2CreateCircleShape(id, shapeDef, Object.assign(new B.b2Circle(), { center: new B.b2Vec2(0, 0), radius: body.shape.radius }))
     : B.b2CreatePolygonShape(id, shapeDef, makePolygon(B, body));
@@ -128,15 +125,21 @@ function createBody(B, world, body, restitution, ccd) {
 // [x, y, angle, vx, vy, omega], the angle unwrapped from the previous frame's
 // (Box2D keeps a rotation, cos and sin, whose angle is in [-pi, pi]).
 function readState(B, id, previousAngle) {
+  // Embind returns copies on the WebAssembly heap: deleted once read, so a
+  // long run does not grow the heap by three objects a body a step.
   const p = B.b2Body_GetPosition(id);
   const v = B.b2Body_GetLinearVelocity(id);
-  const raw = B.b2Rot_GetAngle(B.b2Body_GetRotation(id));
+  const q = B.b2Body_GetRotation(id);
+  const [x, y, vx, vy, raw] = [p.x, p.y, v.x, v.y, B.b2Rot_GetAngle(q)];
+  for (const object of [p, v, q]) {
+    object.delete();
+  }
   let angle = raw;
   if (previousAngle !== null) {
     const turn = raw - previousAngle;
     angle = previousAngle + (turn - 2 * Math.PI * Math.round(turn / (2 * Math.PI)));
   }
-  return [p.x, p.y, angle, v.x, v.y, B.b2Body_GetAngularVelocity(id)];
+  return [x, y, angle, vx, vy, B.b2Body_GetAngularVelocity(id)];
 }
 
 export async function simulate(scene, options) {
