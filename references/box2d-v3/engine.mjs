@@ -190,9 +190,10 @@ export async function simulate(scene, options) {
   }
 
   const dynamicIds = scene.dynamic.map((b) => made[b.index].id);
-  let states = dynamicIds.map((id, i) => readState(B, id, null));
+  let states = dynamicIds.map((id) => readState(B, id, null));
   out.frame(0, states);
-  const stateOf = (body, list) => (body.isStatic ? null : list[scene.dynamic.indexOf(body)]);
+  const slot = new Map(scene.dynamic.map((b, i) => [b, i])); // a body's place in a state list
+  const stateOf = (body, list) => (body.isStatic ? null : list[slot.get(body)]);
   const pushing = new Set(); // pairs whose contact pushed in the previous step
   let seconds = 0;
   for (let k = 1; k <= scene.steps; ++k) {
