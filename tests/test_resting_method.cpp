@@ -221,6 +221,60 @@ TEST_CASE("with resting_method events, a pile's failure names auto and time-step
     CHECK_FALSE(fs::exists(out));
 }
 
+// The time a sentence states after `marker` ("at t = "), in seconds.
+double time_after(const std::string& text, const std::string& marker) {
+    const std::size_t at = text.find(marker);
+    REQUIRE(at != std::string::npos);
+    return std::stod(text.substr(at + marker.size()));
+}
+
+TEST_CASE("auto notes once where it leaves events for time-stepping", "[resting-method]") {
+    const TempDir tmp;
+    const fs::path events = tmp.dir / "events.json";
+    spit(events, pile_of_five);
+    const Outcome stopped = run_tool({"run", events.string(), "--out", "-"});
+    INFO(stopped.err);
+    REQUIRE(stopped.exit_code == 2);
+    // The same pile with resting_method left at auto.
+    std::string text = pile_of_five;
+    const std::string method = R"(,"resting_method":"events")";
+    text.erase(text.find(method), method.size());
+    const fs::path automatic = tmp.dir / "auto.json";
+    spit(automatic, text);
+    const fs::path out = tmp.dir / "out.json";
+    const Outcome o = run_tool({"run", automatic.string(), "--out", out.string()});
+    INFO(o.err);
+    CHECK(o.exit_code == 0);
+    const std::string note = "note: " + automatic.string() +
+                             R"(: "resting_method": "auto" switched from events to time-stepping)";
+    CHECK(o.err.rfind(note, 0) == 0);
+    CHECK(o.err.find('\n') == o.err.size() - 1); // once
+    CHECK(has(o.err, R"(set "resting_method": "time-stepping" to use it from the start)"));
+    // The switch is the step (of dt = 1/60 s) in which events stopped: that
+    // step's start, so the failure lies within one dt after it.
+    const double failed = time_after(stopped.err, "at t = ");
+    const double switched = time_after(o.err, "at t = ");
+    CHECK(switched <= failed);
+    CHECK(failed < switched + 0.016666666666666666);
+    // Standard error only: the trajectory is as any run's.
+    CHECK_FALSE(has(slurp(out), "note"));
+    CHECK_FALSE(has(slurp(out), "resting_method"));
+
+    // Time-stepping from the first step is no switch, and says nothing.
+    for (const std::string& solver :
+         {std::string(R"("resting":true,"stepping":"local")"),
+          std::string(R"("resting":true,"resting_method":"time-stepping")")}) {
+        std::string from_start = text;
+        const std::string resting = R"("resting":true)";
+        from_start.replace(from_start.find(resting), resting.size(), solver);
+        spit(automatic, from_start);
+        const Outcome quiet = run_tool({"run", automatic.string(), "--out", out.string()});
+        INFO(solver << ": " << quiet.err);
+        CHECK(quiet.exit_code == 0);
+        CHECK(quiet.err.empty());
+    }
+}
+
 TEST_CASE("a scene that time-steps from its start is not refused for tunnelling",
           "[resting-method]") {
     // Under g = 1e9 the ball can reach the ground at sqrt(2 g 0.5) m/s, 316 m

@@ -77,11 +77,11 @@ class ImpulseSimulator final : public Simulator {
     }
 
     void step(double t0, double dt) override {
-        const long long time_stepped = world_.work.time_stepping_steps;
+        const bool time_stepping_before = world_.work.time_stepping_from_step >= 0;
         const std::optional<StepError> error = impulse::step(world_, t0, dt, events_);
         // From the first step is the engine's rule for a pile (docs/engine.md),
         // not a switch: only a switch after event steps is noted.
-        if (t0 > 0.0 && time_stepped == 0 && world_.work.time_stepping_steps > 0 &&
+        if (!time_stepping_before && world_.work.time_stepping_from_step > 0 &&
             scene_.solver.resting_method == RestingMethod::automatic) {
             note_switch(t0);
         }
@@ -155,9 +155,11 @@ class ImpulseSimulator final : public Simulator {
         if (s.resting_method == RestingMethod::events) {
             return ContactModel::events;
         }
-        // "auto" keeps time-stepping once it has taken a step with it.
+        // "auto" keeps time-stepping once it has switched to it (the engine
+        // records the step before it tries it, so a failure of that very
+        // step is time-stepping's).
         if (time_stepping_from_start(s) || s.resting_method == RestingMethod::time_stepping ||
-            world_.work.time_stepping_steps > 0) {
+            world_.work.time_stepping_from_step >= 0) {
             return ContactModel::time_stepping;
         }
         return ContactModel::automatic_events;
