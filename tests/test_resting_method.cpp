@@ -299,5 +299,7 @@ TEST_CASE("a scene that time-steps from its start is not refused for tunnelling"
         const Outcome o = outcome(solver);
         require_one_sentence(o);
         CHECK(has(o.err, "tunnelling"));
+        CHECK(has(o.err,
+                  R"(set "ccd": true or "resting_method": "time-stepping" in the solver block)"));
     }
 }
