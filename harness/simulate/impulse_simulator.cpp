@@ -80,8 +80,9 @@ class ImpulseSimulator final : public Simulator {
         const bool time_stepping_before = world_.work.time_stepping_from_step >= 0;
         const std::optional<StepError> error = impulse::step(world_, t0, dt, events_);
         // From the first step is the engine's rule for a pile (docs/engine.md),
-        // not a switch: only a switch after event steps is noted.
-        if (!time_stepping_before && world_.work.time_stepping_from_step > 0 &&
+        // not a switch: only a switch after event steps is noted, and only
+        // when the step it redid went on (a failure is the one sentence then).
+        if (!error && !time_stepping_before && world_.work.time_stepping_from_step > 0 &&
             scene_.solver.resting_method == RestingMethod::automatic) {
             note_switch(t0);
         }
