@@ -254,9 +254,21 @@ void write_summary(std::string& out, const Scorecard& card) {
     if (c.passed + c.failed == 0 && c.errors == 0) {
         out += card.engine + " ran none of the scenes: nothing was scored\n";
     }
+    for (std::size_t e = 0; e < card.references.size(); ++e) {
+        out += "  for scale, " + reference_tally(card, e + 1) + "\n";
+    }
 }
 
 } // namespace
+
+std::string reference_tally(const Scorecard& card, std::size_t index) {
+    const ConformanceCounts c = count_engine(card.scenes, index);
+    return card.references.at(index - 1) + ": " + std::to_string(c.within) + " of " +
+           plural(c.checks, "check", "checks") + " within the allowance on " +
+           plural(c.passed + c.failed, "scene", "scenes") + " it ran (" + std::to_string(c.passed) +
+           " passed, " + std::to_string(c.failed) + " failed, " + std::to_string(c.unsupported) +
+           " unsupported, " + plural(c.errors, "error", "errors") + ")";
+}
 
 std::string scorecard_text(const Scorecard& card) {
     std::string out = "conform: " + card.engine + " on " +
