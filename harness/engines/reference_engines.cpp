@@ -138,8 +138,10 @@ std::vector<ReferenceEngine> reference_engines() {
     const std::string node = on_path({"node", "nodejs"});
     all.push_back(node_reference("box2d-3", "Box2D v3 (npm box2d3-wasm 5.2.0)", dir,
                                  "box2d-v3/engine.mjs", "box2d3-wasm", node));
-    ReferenceEngine chipmunk = built_in("chipmunk", "Chipmunk2D 7.0.3", impulse_engine());
+    ReferenceEngine chipmunk = built_in("chipmunk", "Chipmunk2D 7.0.3", chipmunk_engine());
+#ifndef IMPULSE_WITH_CHIPMUNK
     chipmunk = not_built(chipmunk, "IMPULSE_WITH_CHIPMUNK");
+#endif
     all.push_back(chipmunk);
     all.push_back(
         node_reference("rapier", "Rapier2D (npm @dimforge/rapier2d-deterministic-compat 0.20.0)",
