@@ -168,7 +168,8 @@ export async function simulate(scene, options) {
   const dynamic = scene.dynamic.map((b) => rigidBodies[b.index]);
   let states = dynamic.map((rb) => readState(rb, null));
   out.frame(0, states);
-  const stateOf = (body, list) => (body.isStatic ? null : list[scene.dynamic.indexOf(body)]);
+  const slot = new Map(scene.dynamic.map((b, i) => [b, i])); // a body's place in a state list
+  const stateOf = (body, list) => (body.isStatic ? null : list[slot.get(body)]);
   const pushing = new Set();
   let seconds = 0;
   for (let k = 1; k <= scene.steps; ++k) {
