@@ -200,6 +200,16 @@ TEST_CASE("compare with fake Node references: a replayed column and an unsupport
         }
         CHECK(o.out.find("1 scene: 1 passed, 0 failed") != std::string::npos);
     }
+    SECTION("--box2d-3-substeps N reaches its program and is printed with its command") {
+        const Outcome o = run_tool({"compare", "drop-box", "--root", root, "--with", "box2d-3",
+                                    "--box2d-3-substeps", "2", "--json"},
+                                   {refs.env()});
+        CHECK(o.exit_code == 0);
+        const nlohmann::json command = json_of(o)["scenes"][0]["engines"][1]["command"];
+        REQUIRE(command.size() == 4);
+        CHECK(command[2] == "--substeps");
+        CHECK(command[3] == "2");
+    }
     SECTION("--summary: the summary lines, no table") {
         const Outcome o =
             run_tool({"compare", "drop-box", "--root", root, "--summary"}, {refs.env()});
