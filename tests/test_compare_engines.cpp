@@ -383,3 +383,34 @@ TEST_CASE("conform scores every reference beside the engine under test", "[compa
         CHECK(missing.err.find("install it with: scripts/setup") != std::string::npos);
     }
 }
+
+TEST_CASE("compare drop-box with the real references: a column each, the impact where physics "
+          "puts it",
+          "[compare-engines]") {
+    // Whatever this machine has (scripts/setup installs them all): each one
+    // available is a column, each other one is skipped with its install command.
+    const Outcome o = run_tool({"compare", "drop-box", "--root", root, "--json"});
+    REQUIRE(o.exit_code == 0);
+    const nlohmann::json doc = json_of(o);
+    const nlohmann::json& scene = doc["scenes"][0];
+    const nlohmann::json& t1 = row_named(scene, "impact 1 time of 'box' (s)");
+    const double exact = std::sqrt(2.0 * h0 / g);
+    for (const auto& r : impulse::harness::reference_engines()) {
+        INFO(r.name);
+        if (!r.available) {
+            bool listed = false;
+            for (const nlohmann::json& s : doc["skipped_references"]) {
+                listed = listed || (s["name"] == r.name && s["install"] == r.install);
+            }
+            CHECK(listed);
+            continue;
+        }
+        REQUIRE(t1["values"].contains(r.name));
+        // Every reference steps at dt and finds the contact once the box
+        // overlaps the ground at the end of a step: at or after the exact
+        // time, within two steps of it.
+        const double t = t1["values"][r.name];
+        CHECK(t >= exact);
+        CHECK(t <= exact + 2.0 * dt);
+    }
+}
