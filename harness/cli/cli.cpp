@@ -26,6 +26,9 @@ verbs:
   init [DIR]         start a project: DIR/impulse.json and one example scene
   diff A B           diff two trajectory files with the rules of check
   box2d [SCENE...]   run scenes in Box2D with friction off and compare observables
+  compare [SCENE...] [--with box2d-2.4,box2d-3,chipmunk,rapier]
+                     the same observables in every reference engine on this
+                     machine, one column each, beside the exact answer
   render SCENE|TRAJECTORY
                      an SVG picture of the motion
   sweep SCENE        the speed/accuracy trade: error against cost over a grid of
@@ -163,6 +166,9 @@ int main(int argc, char** argv) {
         }
         if (verb == "box2d") {
             return box2d_verb(rest, out, err);
+        }
+        if (verb == "compare") {
+            return compare_verb(rest, out, err);
         }
         if (verb == "render") {
             return render_verb(rest, out, err);

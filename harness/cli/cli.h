@@ -57,6 +57,7 @@ int check_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
 int bless_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int diff_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int compare_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int render_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int stress_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);

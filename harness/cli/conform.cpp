@@ -1,7 +1,8 @@
 // `impulse conform [--engine ENGINE]`: the conformance suite. Every shipped
 // canonical scene whose answers are physics rather than one of this engine's
 // solver choices (conformance.h) is run in ENGINE and scored expectation by
-// expectation, with this engine and Box2D beside it for scale (scorecard.h).
+// expectation, with this engine and every reference engine on this machine
+// (reference_engines.h) beside it for scale (scorecard.h).
 #include "cli.h"
 #include "conformance.h"
 #include "engine.h"
@@ -10,6 +11,7 @@
 #include "output_path.h"
 #include "progress.h"
 #include "project_options.h"
+#include "reference_option.h"
 #include "scorecard.h"
 #include "shipped_scenes.h"
 #include "text.h"
@@ -33,7 +35,10 @@ scene whose expectations are physics (exact answers, conservation laws) and
 not one of the impulse engine's solver choices is run in ENGINE, and each
 expectation is scored: the exact value, ENGINE's value, the absolute and
 relative error, the scene's allowance, within it or not. The impulse engine
-and Box2D 2.4.1 are scored beside it, for scale. The rule that picks the
+and every reference engine on this machine (box2d-2.4, box2d-3, chipmunk,
+rapier: docs/references.md; scripts/setup installs them) are scored beside
+it, for scale; a reference not on this machine is named with the command
+that installs it. The rule that picks the
 scenes, and the list, are in docs/conformance.md (and --list). With SCENE
 names, only those conformance scenes.
 
@@ -50,7 +55,9 @@ names, only those conformance scenes.
   --junit FILE      JUnit XML for ENGINE: one testcase per check, <skipped> for a
                     scene it refused, <error> for one it failed to run; - as --json
   --list            the shipped scenes, each in or out of the suite and why; runs nothing
-  --no-box2d        leave out the Box2D column (so does "box2d": false in impulse.json)
+  --with LIST       the references beside it, comma-separated, or none (default:
+                    every one on this machine); one not on this machine is exit 2
+  --no-box2d        leave out the box2d-2.4 column (so does "box2d": false in impulse.json)
   -j N, --jobs N    score N scenes at once (results identical to -j 1)
   --quiet           no progress bar (drawn on standard error only when that is a
                     terminal, after about a second of work)
@@ -66,23 +73,31 @@ scene (crashed, timed out, wrote what is not a valid trajectory): that scene's
 row says how, and the other scenes are still scored.
 )";
 
-// The engine under test, then this engine and Box2D for scale, neither twice.
-std::vector<EngineSpec> engines_for(const EngineSpec& tested, bool box2d_wanted,
+// Whether reference `r` is the engine under test itself (--engine box2d is
+// Box2D 2.4.1; an external engine is another program even if named alike).
+bool is_tested(const ReferenceEngine& r, const EngineSpec& tested) {
+    return tested.kind != EngineSpec::Kind::external && tested.kind != EngineSpec::Kind::impulse &&
+           r.spec.kind == tested.kind;
+}
+
+// The engine under test, then this engine and the chosen references for
+// scale, none twice; a reference not on this machine becomes a note.
+std::vector<EngineSpec> engines_for(const EngineSpec& tested, const ReferenceChoice& references,
                                     std::vector<std::string>& notes) {
     std::vector<EngineSpec> engines = {tested};
     if (tested.kind != EngineSpec::Kind::impulse) {
         engines.push_back(impulse_engine());
     }
-#ifdef IMPULSE_WITH_BOX2D
-    if (!box2d_wanted) {
-        notes.push_back("Box2D left out (--no-box2d)");
-    } else if (tested.kind != EngineSpec::Kind::box2d) {
-        engines.push_back(box2d_engine());
+    notes.insert(notes.end(), references.notes.begin(), references.notes.end());
+    for (const ReferenceEngine& r : references.used) {
+        if (!is_tested(r, tested)) {
+            engines.push_back(r.spec);
+        }
     }
-#else
-    (void)box2d_wanted;
-    notes.push_back("Box2D: not in this build (configured with IMPULSE_WITH_BOX2D=OFF)");
-#endif
+    for (const ReferenceEngine& r : references.skipped) {
+        notes.push_back(r.name + " not on this machine (" + r.missing +
+                        "); install it with: " + r.install);
+    }
     return engines;
 }
 
@@ -145,10 +160,10 @@ std::vector<SceneScore> score_with_progress(const std::vector<Scene>& scenes,
 } // namespace
 
 int conform_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostream& err) {
-    const Arguments a = parse_arguments(
-        normalise_jobs(raw),
-        {engine_option, engine_command_option, "--root", "--json", "--junit", "--jobs"},
-        {"--help", "--list", "--no-box2d", "--quiet"});
+    const Arguments a = parse_arguments(normalise_jobs(raw),
+                                        {engine_option, engine_command_option, with_option,
+                                         "--root", "--json", "--junit", "--jobs"},
+                                        {"--help", "--list", "--no-box2d", "--quiet"});
     if (a.has_flag("--help")) {
         out << conform_help;
         return exit_ok;
@@ -180,8 +195,16 @@ int conform_verb(const std::vector<std::string>& raw, std::ostream& out, std::os
     Scorecard card;
     card.engine = tested.name;
     card.scenes_dir = dir;
-    const std::vector<EngineSpec> engines =
-        engines_for(tested, project.box2d && !a.has_flag("--no-box2d"), card.notes);
+    const std::string box2d_off = !project.box2d
+                                      ? printable_path(project.file) + " says \"box2d\": false"
+                                  : a.has_flag("--no-box2d") ? "--no-box2d"
+                                                             : "";
+    const std::optional<ReferenceChoice> references =
+        chosen_references(a.option(with_option), box2d_off, "conform", err);
+    if (!references) {
+        return exit_bad_input;
+    }
+    const std::vector<EngineSpec> engines = engines_for(tested, *references, card.notes);
     for (std::size_t e = 1; e < engines.size(); ++e) {
         card.references.push_back(engines[e].name);
     }

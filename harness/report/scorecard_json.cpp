@@ -79,6 +79,20 @@ std::string scorecard_json(const Scorecard& card) {
                           {"failed", c.failed}, {"unsupported", c.unsupported},
                           {"errors", c.errors}, {"checks", c.checks},
                           {"within", c.within}};
+    // Each reference's tally, as "counts" is the engine under test's.
+    Json reference_counts = Json::array();
+    for (std::size_t e = 0; e < card.references.size(); ++e) {
+        const ConformanceCounts r = count_engine(card.scenes, e + 1);
+        reference_counts.push_back({{"engine", card.references[e]},
+                                    {"scenes", r.scenes},
+                                    {"passed", r.passed},
+                                    {"failed", r.failed},
+                                    {"unsupported", r.unsupported},
+                                    {"errors", r.errors},
+                                    {"checks", r.checks},
+                                    {"within", r.within}});
+    }
+    document["reference_counts"] = std::move(reference_counts);
     Json scenes = Json::array();
     for (const SceneScore& s : card.scenes) {
         Json scene;

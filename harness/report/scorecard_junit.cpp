@@ -76,6 +76,16 @@ std::string scorecard_junit(const Scorecard& card) {
     out += "<testsuites name=\"impulse\"" + totals + ">\n";
     out += "  <testsuite name=\"impulse.conform." + xml_escape(card.engine, true) + "\"" + totals +
            ">\n";
+    // The references' scores for scale, as properties: they are not the
+    // engine under test's to pass, so never a testcase that could fail.
+    if (!card.references.empty()) {
+        out += "    <properties>\n";
+        for (std::size_t e = 0; e < card.references.size(); ++e) {
+            out += "      <property name=\"reference " + xml_escape(card.references[e], true) +
+                   "\" value=\"" + xml_escape(reference_tally(card, e + 1), true) + "\"/>\n";
+        }
+        out += "    </properties>\n";
+    }
     for (const SceneScore& scene : card.scenes) {
         write_scene(out, scene);
     }

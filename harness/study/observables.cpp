@@ -26,13 +26,14 @@ namespace {
 
 using Kind = Box2dObservable::Kind;
 
-// ---------------------------------------------------------------- the two runs
+// ---------------------------------------------------------------- the runs
 
 // One run with the name its notes call it by.
 struct Run {
     const Trajectory& trajectory;
-    const char* name; // "impulse", "Box2D"
+    std::string name; // "impulse", "Box2D"
 };
+using Runs = std::vector<Run>;
 
 // The times of a body's impacts: its events, those that share one time
 // counted once (Box2D may report two points of one landing as two contacts
@@ -94,21 +95,18 @@ Reading none(std::string why) {
     return {std::nullopt, std::move(why)};
 }
 
-ObservableRow row(const Box2dObservable& observable, std::string name, std::optional<double> exact,
-                  const Reading& impulse, const Reading& box2d) {
-    ObservableRow r;
+ObservableReadings row(const Box2dObservable& observable, std::string name,
+                       std::optional<double> exact, const std::vector<Reading>& readings) {
+    ObservableReadings r;
     r.path = observable.path;
     r.name = std::move(name);
     r.exact = exact;
-    r.impulse = impulse.value;
-    r.box2d = box2d.value;
-    r.tolerance =
-        observable.atol + (impulse.value ? observable.rtol * std::abs(*impulse.value) : 0.0);
-    r.within = impulse.value && box2d.value &&
-               std::abs(*box2d.value - *impulse.value) <= r.tolerance; // false for NaN
-    for (const std::string* why : {&impulse.missing, &box2d.missing}) {
-        if (!why->empty()) {
-            r.note += (r.note.empty() ? "" : " ") + *why;
+    r.atol = observable.atol;
+    r.rtol = observable.rtol;
+    for (const Reading& reading : readings) {
+        r.values.push_back(reading.value);
+        if (!reading.missing.empty()) {
+            r.note += (r.note.empty() ? "" : " ") + reading.missing;
         }
     }
     return r;
@@ -116,13 +114,13 @@ ObservableRow row(const Box2dObservable& observable, std::string name, std::opti
 
 // "The Box2D run has 2 impacts of 'box', fewer than 3."
 std::string too_few_impacts(const Run& run, std::size_t seen, int wanted, const std::string& body) {
-    return std::string("The ") + run.name + " run has " + plural(seen, "impact", "impacts") +
-           " of " + single_quoted(body) + ", fewer than " + std::to_string(wanted) + ".";
+    return "The " + run.name + " run has " + plural(seen, "impact", "impacts") + " of " +
+           single_quoted(body) + ", fewer than " + std::to_string(wanted) + ".";
 }
 
 std::string no_frame_between(const Run& run, std::size_t n, const std::string& body) {
-    return std::string("The ") + run.name + " run has no frame between impact " +
-           std::to_string(n) + " of " + single_quoted(body) + " and the next.";
+    return "The " + run.name + " run has no frame between impact " + std::to_string(n) + " of " +
+           single_quoted(body) + " and the next.";
 }
 
 const SceneBody& body_named(const Scene& scene, const std::string& name) {
@@ -145,8 +143,8 @@ bool drop_applies(const Scene& scene, const SceneBody& body) {
 // end of a step and resolves it in the next, so its times lag by one to two
 // steps. The exact answer is the drop ladder, or the single-corner impact's
 // first time.
-void impact_times(const Scene& scene, const Box2dObservable& o, const Run (&runs)[2],
-                  std::vector<ObservableRow>& out) {
+void impact_times(const Scene& scene, const Box2dObservable& o, const Runs& runs,
+                  std::vector<ObservableReadings>& out) {
     const SceneBody& body = body_named(scene, o.body);
     std::optional<DropLadder> drop;
     if (drop_applies(scene, body)) {
@@ -156,12 +154,14 @@ void impact_times(const Scene& scene, const Box2dObservable& o, const Run (&runs
     if (!drop && !corner_impact_refusal(scene, body, "")) {
         corner_time = corner_impact(scene, body, *gap_to_static_ground(scene, body)).t_hit;
     }
-    const std::vector<double> impacts[2] = {impacts_of(runs[0].trajectory, o.body),
-                                            impacts_of(runs[1].trajectory, o.body)};
+    std::vector<std::vector<double>> impacts;
+    for (const Run& run : runs) {
+        impacts.push_back(impacts_of(run.trajectory, o.body));
+    }
     for (int n = 1; n <= o.count; ++n) {
         const auto k = static_cast<std::size_t>(n - 1);
-        Reading readings[2];
-        for (int r = 0; r < 2; ++r) {
+        std::vector<Reading> readings(runs.size());
+        for (std::size_t r = 0; r < runs.size(); ++r) {
             readings[r] = k < impacts[r].size()
                               ? value(impacts[r][k])
                               : none(too_few_impacts(runs[r], impacts[r].size(), n, o.body));
@@ -174,7 +174,7 @@ void impact_times(const Scene& scene, const Box2dObservable& o, const Run (&runs
         }
         out.push_back(
             row(o, "impact " + std::to_string(n) + " time of " + single_quoted(o.body) + " (s)",
-                exact, readings[0], readings[1]));
+                exact, readings));
     }
 }
 
@@ -194,8 +194,8 @@ std::vector<Reading> apexes(const Scene& scene, const Box2dObservable& o, const 
     for (int n = 1; n <= o.count; ++n) {
         const auto k = static_cast<std::size_t>(n - 1);
         if (!columns) {
-            out.push_back(none(std::string("The ") + run.name + " run has no columns for " +
-                               single_quoted(o.body) + "."));
+            out.push_back(
+                none("The " + run.name + " run has no columns for " + single_quoted(o.body) + "."));
             continue;
         }
         if (k >= impacts.size()) {
@@ -214,23 +214,29 @@ std::vector<Reading> apexes(const Scene& scene, const Box2dObservable& o, const 
     return out;
 }
 
-void apex_observable(const Scene& scene, const Box2dObservable& o, const Run (&runs)[2],
-                     std::vector<ObservableRow>& out) {
+void apex_observable(const Scene& scene, const Box2dObservable& o, const Runs& runs,
+                     std::vector<ObservableReadings>& out) {
     const SceneBody& body = body_named(scene, o.body);
     // The loader has held the body to the drop's preconditions: static ground below.
     const DropLadder drop = *drop_ladder(scene, body);
-    const std::vector<Reading> apex[2] = {apexes(scene, o, runs[0], drop.h0),
-                                          apexes(scene, o, runs[1], drop.h0)};
+    std::vector<std::vector<Reading>> apex;
+    for (const Run& run : runs) {
+        apex.push_back(apexes(scene, o, run, drop.h0));
+    }
     for (int n = 1; n <= o.count; ++n) {
         const auto k = static_cast<std::size_t>(n);
         const std::string number_n = std::to_string(n);
         if (o.kind == Kind::apex_heights) {
+            std::vector<Reading> heights;
+            for (const std::vector<Reading>& of_run : apex) {
+                heights.push_back(of_run[k]);
+            }
             out.push_back(row(o, "apex " + number_n + " of " + single_quoted(o.body) + " (m)",
-                              drop.apex_gap(n), apex[0][k], apex[1][k]));
+                              drop.apex_gap(n), heights));
             continue;
         }
-        Reading ratio[2];
-        for (int r = 0; r < 2; ++r) {
+        std::vector<Reading> ratio(runs.size());
+        for (std::size_t r = 0; r < runs.size(); ++r) {
             const Reading& now = apex[r][k];
             const Reading& before = apex[r][k - 1];
             if (now.value && before.value) {
@@ -242,7 +248,7 @@ void apex_observable(const Scene& scene, const Box2dObservable& o, const Run (&r
         out.push_back(row(o,
                           "apex " + number_n + " / apex " + std::to_string(n - 1) + " of " +
                               single_quoted(o.body),
-                          drop.e * drop.e, ratio[0], ratio[1]));
+                          drop.e * drop.e, ratio));
     }
 }
 
@@ -287,60 +293,98 @@ std::optional<Motion> exact_after(const Scene& scene, const SceneBody& body, int
     return std::nullopt;
 }
 
+// The times of `frames` for a sentence: "0.5 s and 0.55 s", "0.5 s, 0.55 s and 0.6 s".
+std::string times_of(const std::vector<const std::vector<double>*>& frames) {
+    std::vector<std::string> times;
+    for (const std::vector<double>* f : frames) {
+        if (f) {
+            times.push_back(sentence_number(frame_time(*f)) + " s");
+        }
+    }
+    std::string text;
+    for (std::size_t i = 0; i < times.size(); ++i) {
+        text += (i == 0 ? "" : i + 1 == times.size() ? " and " : ", ") + times[i];
+    }
+    return text;
+}
+
+// Each run's first frame after impact k (0-based), or why it has none.
+struct AfterImpact {
+    const std::vector<double>* frame = nullptr;
+    std::vector<double> impacts;
+    std::optional<BodyColumns> columns;
+    std::string missing;
+};
+
+AfterImpact after_impact(const Run& run, const std::string& body, std::size_t k, int impact) {
+    AfterImpact a;
+    a.impacts = impacts_of(run.trajectory, body);
+    a.columns = body_columns(run.trajectory, body);
+    if (!a.columns) {
+        a.missing = "The " + run.name + " run has no columns for " + single_quoted(body) + ".";
+    } else if (k >= a.impacts.size()) {
+        a.missing = too_few_impacts(run, a.impacts.size(), impact, body);
+    } else if (!(a.frame = frame_after(run.trajectory, a.impacts, k))) {
+        a.missing = no_frame_between(run, k + 1, body);
+    }
+    return a;
+}
+
+// Moves every run that has a first frame after impact k to the frame of the
+// latest of them, so that gravity has pulled on all for equally long (Box2D
+// resolves an impact a step or two after the exact time, so its first frame
+// after it is often a step later than the impulse engine's). Empty, or the
+// sentence saying each run is read at its own frame when in one run the next
+// impact comes before another run's first frame.
+std::string common_frames(const Runs& runs, std::vector<AfterImpact>& after, std::size_t k) {
+    std::vector<const std::vector<double>*> frames;
+    std::optional<double> t;
+    for (const AfterImpact& a : after) {
+        frames.push_back(a.frame);
+        if (a.frame) {
+            t = std::max(t.value_or(frame_time(*a.frame)), frame_time(*a.frame));
+        }
+    }
+    if (std::count(frames.begin(), frames.end(), nullptr) + 1 >=
+        static_cast<std::ptrdiff_t>(frames.size())) {
+        // Fewer than two runs to read at a common time.
+        return "";
+    }
+    std::vector<const std::vector<double>*> common(runs.size(), nullptr);
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+        if (frames[r] && !(common[r] = frame_after(runs[r].trajectory, after[r].impacts, k, *t))) {
+            return "Read at each run's own first frame after the impact (t = " + times_of(frames) +
+                   "): in one run the next impact comes before the other run's first frame.";
+        }
+    }
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+        after[r].frame = common[r];
+    }
+    return "";
+}
+
 // vx, vy and omega in the first frame after impact n, read at the same frame
-// time in both runs (the later of their first frames after the impact) so
-// that gravity has pulled on both for equally long (Box2D resolves an impact
-// a step or two after the exact time, so its first frame after it is often a
-// step later than the impulse engine's).
-void post_impact_velocity(const Scene& scene, const Box2dObservable& o, const Run (&runs)[2],
-                          std::vector<ObservableRow>& out) {
+// time in every run (common_frames).
+void post_impact_velocity(const Scene& scene, const Box2dObservable& o, const Runs& runs,
+                          std::vector<ObservableReadings>& out) {
     const SceneBody& body = body_named(scene, o.body);
     const auto k = static_cast<std::size_t>(o.impact - 1);
-    const std::vector<double>* frames[2] = {nullptr, nullptr};
-    std::vector<double> impacts[2];
-    std::optional<BodyColumns> columns[2];
-    std::string missing[2];
-    for (int r = 0; r < 2; ++r) {
-        impacts[r] = impacts_of(runs[r].trajectory, o.body);
-        columns[r] = body_columns(runs[r].trajectory, o.body);
-        if (!columns[r]) {
-            missing[r] = std::string("The ") + runs[r].name + " run has no columns for " +
-                         single_quoted(o.body) + ".";
-        } else if (k >= impacts[r].size()) {
-            missing[r] = too_few_impacts(runs[r], impacts[r].size(), o.impact, o.body);
-        } else if (!(frames[r] = frame_after(runs[r].trajectory, impacts[r], k))) {
-            missing[r] = no_frame_between(runs[r], k + 1, o.body);
-        }
+    std::vector<AfterImpact> after;
+    for (const Run& run : runs) {
+        after.push_back(after_impact(run, o.body, k, o.impact));
     }
-    std::string shared;
-    if (frames[0] && frames[1]) {
-        // Both runs record frames at k dt.
-        const double t = std::max(frame_time(*frames[0]), frame_time(*frames[1]));
-        const std::vector<double>* common[2];
-        for (int r = 0; r < 2; ++r) {
-            common[r] = frame_after(runs[r].trajectory, impacts[r], k, t);
-        }
-        if (common[0] && common[1]) {
-            frames[0] = common[0];
-            frames[1] = common[1];
-        } else {
-            shared = "Read at each run's own first frame after the impact (t = " +
-                     sentence_number(frame_time(*frames[0])) + " s and " +
-                     sentence_number(frame_time(*frames[1])) +
-                     " s): in one run the next impact comes before the other run's first frame.";
-        }
-    }
+    const std::string shared = common_frames(runs, after, k);
     std::optional<Motion> exact;
-    if (frames[0]) {
-        exact = exact_after(scene, body, o.impact, frame_time(*frames[0]));
+    if (after.front().frame) {
+        exact = exact_after(scene, body, o.impact, frame_time(*after.front().frame));
     }
-    Motion motion[2];
-    for (int r = 0; r < 2; ++r) {
-        if (frames[r]) {
-            motion[r] = motion_in(*frames[r], *columns[r]);
+    std::vector<Motion> motion(runs.size());
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+        if (after[r].frame) {
+            motion[r] = motion_in(*after[r].frame, *after[r].columns);
         }
     }
-    const std::string after =
+    const std::string text =
         " after impact " + std::to_string(o.impact) + " of " + single_quoted(o.body);
     struct Component {
         const char* name;
@@ -353,13 +397,13 @@ void post_impact_velocity(const Scene& scene, const Box2dObservable& o, const Ru
         {"omega", "rad/s", [](const Motion& m) { return m.omega; }},
     };
     for (const Component& c : components) {
-        Reading readings[2];
-        for (int r = 0; r < 2; ++r) {
-            readings[r] = frames[r] ? value(c.of(motion[r])) : none(missing[r]);
+        std::vector<Reading> readings(runs.size());
+        for (std::size_t r = 0; r < runs.size(); ++r) {
+            readings[r] = after[r].frame ? value(c.of(motion[r])) : none(after[r].missing);
         }
-        ObservableRow built = row(o, std::string(c.name) + after + " (" + c.unit + ")",
-                                  exact ? std::optional<double>(c.of(*exact)) : std::nullopt,
-                                  readings[0], readings[1]);
+        ObservableReadings built =
+            row(o, std::string(c.name) + text + " (" + c.unit + ")",
+                exact ? std::optional<double>(c.of(*exact)) : std::nullopt, readings);
         if (!shared.empty()) {
             built.note += (built.note.empty() ? "" : " ") + shared;
         }
@@ -385,19 +429,22 @@ Reading largest_residual(const Scene& scene, const Box2dObservable& o, const Run
         }
     }
     if (!largest) {
-        return none(std::string("The ") + run.name + " run has no collision" +
+        return none("The " + run.name + " run has no collision" +
                     (o.body.empty() ? "" : " of " + single_quoted(o.body)) + " to measure.");
     }
     return value(*largest);
 }
 
-void restitution_residual(const Scene& scene, const Box2dObservable& o, const Run (&runs)[2],
-                          std::vector<ObservableRow>& out) {
+void restitution_residual(const Scene& scene, const Box2dObservable& o, const Runs& runs,
+                          std::vector<ObservableReadings>& out) {
+    std::vector<Reading> readings;
+    for (const Run& run : runs) {
+        readings.push_back(largest_residual(scene, o, run));
+    }
     out.push_back(row(o,
                       "largest restitution residual" +
                           (o.body.empty() ? std::string() : " of " + single_quoted(o.body)),
-                      0.0, largest_residual(scene, o, runs[0]),
-                      largest_residual(scene, o, runs[1])));
+                      0.0, readings));
 }
 
 // ---------------------------------------------------------------- conserved quantities
@@ -407,11 +454,10 @@ Reading largest_drift(const Scene& scene, Kind kind, const Run& run) {
     std::string missing;
     const std::optional<std::vector<Mass>> masses = masses_of(scene, run.trajectory, missing);
     if (!masses) {
-        return none(std::string("The ") + run.name + " run has no columns for " +
-                    single_quoted(missing) + ".");
+        return none("The " + run.name + " run has no columns for " + single_quoted(missing) + ".");
     }
     if (run.trajectory.frames.empty()) {
-        return none(std::string("The ") + run.name + " run has no frames.");
+        return none("The " + run.name + " run has no frames.");
     }
     const Totals initial = totals_in(run.trajectory.frames.front(), *masses, scene.gravity);
     double largest = 0.0;
@@ -440,8 +486,8 @@ Reading largest_drift(const Scene& scene, Kind kind, const Run& run) {
     return value(largest);
 }
 
-void conserved(const Scene& scene, const Box2dObservable& o, const Run (&runs)[2],
-               std::vector<ObservableRow>& out) {
+void conserved(const Scene& scene, const Box2dObservable& o, const Runs& runs,
+               std::vector<ObservableReadings>& out) {
     const char* quantity = o.kind == Kind::momentum           ? "momentum"
                            : o.kind == Kind::angular_momentum ? "angular_momentum"
                                                               : "energy";
@@ -453,16 +499,33 @@ void conserved(const Scene& scene, const Box2dObservable& o, const Run (&runs)[2
     if (!conservation_refusal(scene, quantity)) {
         exact = 0.0;
     }
-    out.push_back(row(o, name, exact, largest_drift(scene, o.kind, runs[0]),
-                      largest_drift(scene, o.kind, runs[1])));
+    std::vector<Reading> readings;
+    for (const Run& run : runs) {
+        readings.push_back(largest_drift(scene, o.kind, run));
+    }
+    out.push_back(row(o, name, exact, readings));
 }
 
 } // namespace
 
-std::vector<ObservableRow> compare_observables(const Scene& scene, const Trajectory& impulse,
-                                               const Trajectory& box2d) {
-    const Run runs[2] = {{impulse, "impulse"}, {box2d, "Box2D"}};
-    std::vector<ObservableRow> rows;
+double ObservableReadings::tolerance() const {
+    const std::optional<double>& first = values.front();
+    return atol + (first ? rtol * std::abs(*first) : 0.0);
+}
+
+bool ObservableReadings::within(std::size_t run) const {
+    const std::optional<double>& first = values.front();
+    const std::optional<double>& other = values.at(run);
+    return first && other && std::abs(*other - *first) <= tolerance(); // false for NaN
+}
+
+std::vector<ObservableReadings> read_observables(const Scene& scene,
+                                                 const std::vector<ObservedRun>& observed) {
+    Runs runs;
+    for (const ObservedRun& o : observed) {
+        runs.push_back({*o.trajectory, o.name});
+    }
+    std::vector<ObservableReadings> rows;
     for (const Box2dObservable& o : scene.box2d.observables) {
         switch (o.kind) {
         case Kind::impact_times:
@@ -484,6 +547,25 @@ std::vector<ObservableRow> compare_observables(const Scene& scene, const Traject
             conserved(scene, o, runs, rows);
             break;
         }
+    }
+    return rows;
+}
+
+std::vector<ObservableRow> compare_observables(const Scene& scene, const Trajectory& impulse,
+                                               const Trajectory& box2d) {
+    std::vector<ObservableRow> rows;
+    for (const ObservableReadings& r :
+         read_observables(scene, {{&impulse, "impulse"}, {&box2d, "Box2D"}})) {
+        ObservableRow row;
+        row.path = r.path;
+        row.name = r.name;
+        row.exact = r.exact;
+        row.impulse = r.values[0];
+        row.box2d = r.values[1];
+        row.tolerance = r.tolerance();
+        row.within = r.within(1);
+        row.note = r.note;
+        rows.push_back(std::move(row));
     }
     return rows;
 }

@@ -1,13 +1,15 @@
 #include "reference_comparison.h"
 
-#include "box2d_simulator.h"
 #include "engine.h"
 #include "input_error.h"
 #include "record.h"
 #include "run.h"
 #include "simulator.h"
-#include "single_precision.h"
 #include "tunnelling.h"
+#ifdef IMPULSE_WITH_BOX2D
+#include "box2d_simulator.h"
+#include "single_precision.h"
+#endif
 
 #include <cstdio>
 #include <memory>
@@ -101,8 +103,98 @@ std::optional<Trajectory> run_under_study(const EngineSpec& engine, const Scene&
     return impulse;
 }
 
+// A reference's column: its run of the scene with `overrides`, or its refusal.
+EngineColumn reference_column(const EngineSpec& spec, const Scene& scene,
+                              const Overrides& overrides, std::optional<double> stopped_at,
+                              std::vector<std::string>& warnings) {
+    EngineColumn column;
+    column.name = spec.name;
+    column.command = spec.command;
+    EngineRun run = run_engine(spec, scene, overrides);
+    warnings.insert(warnings.end(), run.warnings.begin(), run.warnings.end());
+    if (run.outcome == EngineRun::Outcome::unsupported) {
+        column.unsupported = "unsupported by " + spec.name + ": " + run.message;
+        return column;
+    }
+    if (stopped_at) {
+        truncate(run.trajectory, *stopped_at);
+    }
+    column.engine = run.trajectory.engine;
+    column.settings = run.trajectory.solver;
+    column.run = std::move(run.trajectory);
+    return column;
+}
+
 } // namespace
 
+EngineComparison compare_engines(const std::string& path, const CompareOptions& options) {
+    const Scene scene = load_scene(path);
+    EngineComparison c;
+    c.name = scene.name;
+    c.file = scene.file;
+    c.warnings = scene.warnings;
+    c.scene_integrator = integrator_name(scene.solver.integrator);
+    Overrides overrides;
+    overrides.dt = options.dt;
+    c.dt = with_overrides(scene, overrides).dt;
+    if (scene.box2d.observables.empty()) {
+        return c; // nothing to compare: no engine is run
+    }
+    // The references get --dt only: each integrates as its own model does.
+    const Overrides for_references = overrides;
+    if (!options.scene_integrator) {
+        overrides.integrator = Integrator::symplectic_euler;
+    }
+    if (options.engine.kind == EngineSpec::Kind::impulse) {
+        refuse_tunnelling(with_overrides(scene, overrides));
+    }
+    // The fields run_under_study fills for impulse box2d.
+    ReferenceComparison studied_fields;
+    std::optional<double> stopped_at;
+    std::optional<Trajectory> studied =
+        run_under_study(options.engine, scene, overrides, studied_fields, stopped_at);
+    EngineColumn first;
+    first.name = options.engine.name;
+    first.command = options.engine.command;
+    if (!studied) {
+        first.unsupported = studied_fields.skipped;
+        c.engines.push_back(std::move(first));
+        return c;
+    }
+    c.stopped = studied_fields.stopped;
+    // The sentence run_under_study writes for two runs, said of all of them.
+    if (const std::size_t both = c.stopped.find("both runs are compared");
+        both != std::string::npos) {
+        c.stopped.replace(both, 22, "every run is compared");
+    }
+    first.engine = studied->engine;
+    first.settings = studied->solver;
+    first.run = std::move(*studied);
+    c.engines.push_back(std::move(first));
+    for (const EngineSpec& reference : options.references) {
+        c.engines.push_back(
+            reference_column(reference, scene, for_references, stopped_at, c.warnings));
+    }
+    std::vector<ObservedRun> runs;
+    std::vector<std::size_t> ran;
+    for (std::size_t i = 0; i < c.engines.size(); ++i) {
+        if (c.engines[i].run) {
+            runs.push_back({&*c.engines[i].run, c.engines[i].name});
+            ran.push_back(i);
+        }
+    }
+    for (ObservableReadings& row : read_observables(scene, runs)) {
+        std::vector<std::optional<double>> values(c.engines.size());
+        for (std::size_t k = 0; k < ran.size(); ++k) {
+            values[ran[k]] = row.values[k];
+        }
+        row.values = std::move(values);
+        c.rows.push_back(std::move(row));
+    }
+    return c;
+}
+
+#ifdef IMPULSE_WITH_BOX2D
 ReferenceComparison compare_with_box2d(const std::string& path, const ReferenceOptions& options) {
     const Scene scene = load_scene(path);
     ReferenceComparison c;
@@ -161,5 +253,6 @@ ReferenceComparison compare_with_box2d(const std::string& path, const ReferenceO
     c.box2d_run = std::move(box2d);
     return c;
 }
+#endif // IMPULSE_WITH_BOX2D
 
 } // namespace impulse::harness

@@ -1,8 +1,9 @@
-// The second reference's logic (impulse box2d): one scene run in the engine
-// under study (the impulse engine unless told otherwise: any engine behind
-// run_engine, engine.h) and in Box2D with friction off, the observables its
-// "box2d" block names compared (observables.h), computed from the two
-// trajectories. The verb (cli/box2d.cpp) parses and prints.
+// The references' logic (impulse box2d, impulse compare): one scene run in the
+// engine under study (the impulse engine unless told otherwise: any engine
+// behind run_engine, engine.h) and in reference engines (reference_engines.h),
+// the observables its "box2d" block names compared (observables.h), computed
+// from the trajectories. The verbs (cli/box2d.cpp, cli/compare.cpp) parse and
+// print.
 #pragma once
 
 #include "engine.h"
@@ -14,6 +15,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace impulse::harness {
@@ -56,6 +58,52 @@ struct ReferenceComparison {
     }
     bool passed() const { return outside() == 0; }
 };
+
+// compare_with_box2d for any set of references (impulse compare).
+struct CompareOptions {
+    EngineSpec engine = impulse_engine(); // the engine under study
+    std::vector<EngineSpec> references;   // its columns, in this order
+    std::optional<double> dt;             // every run's step; unset: the scene's
+    // As ReferenceOptions: the engine under study runs with symplectic-euler
+    // unless this is set; the references always run with their own integrators.
+    bool scene_integrator = false;
+};
+
+// One engine's run of one scene: its column.
+struct EngineColumn {
+    std::string name;        // the spec's: "impulse", "box2d-2.4", "box2d-3"
+    std::string engine;      // the trajectory's engine: "box2d 2.4.1"
+    std::string unsupported; // not empty: the engine refused the scene (exit 3), its sentence
+    std::vector<std::pair<std::string, std::string>> settings; // its solver block, every setting
+    std::vector<std::string> command;                          // external: what ran, scene appended
+    std::optional<Trajectory> run; // as compared (cut where the engine under study stopped)
+};
+
+struct EngineComparison {
+    std::string name;
+    std::string file;
+    double dt = 0.0;
+    std::string scene_integrator;
+    std::vector<std::string> warnings;
+    std::string stopped; // why and where the comparison ends early, when it does
+    // [0] the engine under study, then the references in the order asked.
+    // When [0] refused the scene it is the only one and there are no rows.
+    std::vector<EngineColumn> engines;
+    // values[i] is engines[i]'s, nullopt for an engine that refused the scene.
+    std::vector<ObservableReadings> rows;
+
+    // The scene names no observables: no engine was run.
+    bool nothing_declared() const { return engines.empty(); }
+    // The engine under study refused the scene: nothing else was run.
+    bool skipped() const { return !engines.empty() && !engines.front().unsupported.empty(); }
+};
+
+// Loads the scene and runs it in every engine. A reference that refuses the
+// scene (exit 3, or a shape a built-in reference cannot take) is an
+// "unsupported" column, not a failure; the engine under study refusing it
+// skips the scene. Throws InputError for a broken scene, a scene that would
+// tunnel unseen in the impulse engine, and an engine that fails (run_engine).
+EngineComparison compare_engines(const std::string& path, const CompareOptions& options);
 
 // Loads the scene and compares the two runs. Throws InputError for a scene
 // either engine refuses (a tunnel, a shape Box2D cannot take) and, from

@@ -1,0 +1,62 @@
+// `impulse compare` (cli/compare.cpp) as a table for people, as JSON
+// (impulse/engine-comparison@1) for scripts and as JUnit XML for CI: one
+// column per engine (the engine under study, then each reference) beside the
+// exact answer, each engine's error against it, every setting of every run.
+#pragma once
+
+#include "reference_comparison.h"
+#include "reference_engines.h"
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace impulse::harness {
+
+inline constexpr const char* engine_comparison_schema = "impulse/engine-comparison@1";
+
+// The one reference the scenes' box2d blocks hold tolerances for (they were
+// measured on Box2D 2.4.1): its column decides pass or fail; the others are
+// shown for scale and never fail a comparison.
+inline constexpr const char* judged_reference = "box2d-2.4";
+
+struct ComparisonReport {
+    std::string engine;                      // the engine under study
+    bool scene_integrator = false;           // --scene-integrator
+    std::vector<ReferenceEngine> references; // the columns after the engine under study
+    std::vector<ReferenceEngine> skipped;    // not on this machine and not asked for
+    std::vector<std::string> notes;          // e.g. "box2d-2.4 left out: ..."
+    std::vector<EngineComparison> scenes;
+};
+
+// The column of the judged reference in a scene, when it ran there.
+std::optional<std::size_t> judged_column(const EngineComparison& c);
+// Rows of the judged reference outside the scene's tolerance of the engine
+// under study (0 when it did not run).
+std::size_t rows_outside(const EngineComparison& c);
+// Every scene within tolerance (skipped scenes and unjudged ones pass).
+bool comparison_passed(const ComparisonReport& report);
+
+// Per scene: each engine's settings line, then the table (exact, then each
+// engine's value and its error against the exact answer); at the end one
+// summary line per engine and the verdict. `summary_only`: only the lines
+// after the tables (scripts/gate).
+std::string comparison_text(const ComparisonReport& report, bool summary_only);
+std::string comparison_json(const ComparisonReport& report);
+// One testcase per scene and engine: the judged reference's fails when a row
+// is outside its tolerance; a refusal or a reference not on this machine is
+// <skipped>; the others pass, with their worst error in <system-out>.
+std::string comparison_junit(const ComparisonReport& report);
+
+// An engine's worst relative error against the exact answer over the rows
+// that have a non-zero exact answer, and where.
+struct WorstError {
+    double relative = 0.0; // |value - exact| / |exact|
+    std::string scene;
+    std::string row;
+};
+std::optional<WorstError> worst_error(const std::vector<EngineComparison>& scenes,
+                                      const std::string& engine);
+
+} // namespace impulse::harness
