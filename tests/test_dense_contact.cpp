@@ -389,7 +389,7 @@ World random_pile(const PileCase& pile) {
 // How long the pile is given to come to rest: 8 s, or, when more, the time a
 // single drop from the pile's top needs to end its bounces, t1 (1 + e) / (1 -
 // e) (docs/physics.md, "Drop": t_inf = t1 + 2 e v1 / (g (1 - e))), plus 2 s.
-// At e = 0.9 from 2.9 m that is 17 s: no contact model rests sooner.
+// At e = 0.9 from 2.7 m that is 16 s: a lone body would bounce that long.
 int steps_to_rest(const PileCase& pile) {
     const double t1 = std::sqrt(2.0 * layout_of(pile.count).top(pile.count) / g);
     const double seconds = std::max(8.0, t1 * (1.0 + pile.e) / (1.0 - pile.e) + 2.0);
