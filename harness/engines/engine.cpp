@@ -14,6 +14,9 @@
 #include "box2d_simulator.h"
 #include "single_precision.h"
 #endif
+#ifdef IMPULSE_WITH_CHIPMUNK
+#include "chipmunk_simulator.h"
+#endif
 
 #include <cerrno>
 #include <chrono>
@@ -61,6 +64,36 @@ EngineRun run_box2d(const Scene& scene, const Overrides& overrides) {
                      "engine 'box2d' cannot run it: this build has no Box2D (configured with "
                      "IMPULSE_WITH_BOX2D=OFF); install libbox2d-dev and configure with "
                      "-DIMPULSE_WITH_BOX2D=ON to use it");
+#endif
+}
+
+EngineRun run_chipmunk(const Scene& scene, const Overrides& overrides) {
+#ifdef IMPULSE_WITH_CHIPMUNK
+    const Scene effective = with_overrides(scene, overrides);
+    EngineRun result;
+    std::unique_ptr<Simulator> simulator;
+    try {
+        // A scene Chipmunk cannot represent, or one that would trip its debug
+        // checks (which abort the process), is refused before Chipmunk sees
+        // it: a skip with the sentence naming the JSON path, as Box2D's.
+        simulator = make_chipmunk_simulator(effective);
+    } catch (const InputError& refusal) {
+        result.outcome = EngineRun::Outcome::unsupported;
+        result.message = refusal.what();
+        return result;
+    }
+    result.trajectory = record(*simulator, effective);
+    const std::string used = overrides_list(overrides);
+    if (!used.empty()) {
+        result.trajectory.solver.emplace_back("overrides", used);
+    }
+    return result;
+#else
+    (void)overrides;
+    throw InputError(scene.file, "",
+                     "engine 'chipmunk' cannot run it: this build has no Chipmunk2D (configured "
+                     "with IMPULSE_WITH_CHIPMUNK=OFF); install libchipmunk-dev and configure "
+                     "with -DIMPULSE_WITH_CHIPMUNK=ON to use it");
 #endif
 }
 
@@ -183,6 +216,13 @@ EngineSpec box2d_engine() {
     return spec;
 }
 
+EngineSpec chipmunk_engine() {
+    EngineSpec spec;
+    spec.kind = EngineSpec::Kind::chipmunk;
+    spec.name = "chipmunk";
+    return spec;
+}
+
 EngineRun run_engine(const EngineSpec& engine, const Scene& scene, const Overrides& overrides) {
     const auto start = std::chrono::steady_clock::now();
     EngineRun result;
@@ -192,6 +232,9 @@ EngineRun run_engine(const EngineSpec& engine, const Scene& scene, const Overrid
         break;
     case EngineSpec::Kind::box2d:
         result = run_box2d(scene, overrides);
+        break;
+    case EngineSpec::Kind::chipmunk:
+        result = run_chipmunk(scene, overrides);
         break;
     case EngineSpec::Kind::external:
         // The process's own wall time, measured around it.

@@ -17,8 +17,9 @@ namespace impulse::harness {
 
 struct EngineSpec {
     // impulse: this engine, in process; box2d: Box2D 2.4.1 with friction off,
-    // in process; external: a program run through the protocol.
-    enum class Kind { impulse, box2d, external };
+    // in process; chipmunk: Chipmunk2D 7.0.3 with friction off, in process
+    // (docs/references.md); external: a program run through the protocol.
+    enum class Kind { impulse, box2d, chipmunk, external };
     Kind kind = Kind::impulse;
     // Names the engine in messages and rows, and its goldens folder when a
     // project has several engines: letters, digits and -_. (as a scene name).
@@ -55,6 +56,7 @@ struct EngineRun {
 
 EngineSpec impulse_engine();
 EngineSpec box2d_engine();
+EngineSpec chipmunk_engine();
 
 // Runs `scene` (with `overrides` applied) in `engine`. Throws InputError with
 // one sentence naming the engine, the scene and the engine's own message for
