@@ -516,7 +516,10 @@ void check_pile_settles(const PileCase& pile) {
         last = now;
     }
     INFO("deepest overlap " << deepest << " m, worst energy gain beyond rounding " << worst_gain
-                            << " J, guard steps " << world.work.energy_guard_steps);
+                            << " J; engine: " << world.work.unconverged_islands
+                            << " unconverged islands, " << world.work.overlap_guard_passes
+                            << " guard passes, " << world.work.energy_guard_steps
+                            << " energy-guard steps");
     CHECK(deepest <= 1e-6);
     CHECK(worst_gain <= 0.0);
     const double released = start.total() - last.potential;
