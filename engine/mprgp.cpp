@@ -13,7 +13,9 @@ constexpr double infinite = std::numeric_limits<double>::infinity();
 
 // Dostal's proportioning constant: a proportioning step is taken when the
 // active set's chopped gradient outweighs the free set's reduced one; 1 is the
-// value his convergence bounds are usually quoted for.
+// value his convergence bounds are usually quoted for. Measured to d/h cold
+// (tests/test_mprgp.cpp): 1 takes a column of 50 boxes in 310 products and a
+// 1000-disc packing in 1341; 0.5 takes 283 and 2399; 3 takes 535 and 1188.
 constexpr double proportion = 1.0;
 
 std::size_t at(int i) {
