@@ -253,6 +253,126 @@ StressCase rest_case() {
         checks);
 }
 
+// ---------------------------------------------------------------- piles (issue 14)
+
+// Dense contact for a pile row: resting on, by time-stepping (engine.md,
+// "Dense contact"), with the scene's stepping.
+//
+// Set on the loaded scene rather than written into its file while the scene
+// keys for them (solver.resting_method, local stepping with resting) are
+// another part's to add: the engine reads the same settings either way.
+StressCase dense(StressCase c, Stepping stepping) {
+    c.scene.solver.resting_method = RestingMethod::time_stepping;
+    c.scene.solver.stepping = stepping;
+    return c;
+}
+
+// What a column at rest may be off by per step: the solver stops once no point
+// would move by more than the contact tolerance d within the step, a velocity
+// of d / h, which changes a body's momentum by m d / h against its weight's
+// m |g| h. So the impulse through each contact is the weight above times h
+// within d / (|g| h^2) of it (3.7e-7 at 60 Hz).
+double support_rtol(const Scene& scene) {
+    return scene.solver.contact_tolerance / (length(scene.gravity) * scene.dt * scene.dt);
+}
+
+// 50 boxes 1.0 x 0.25 m (dyadic, so the faces touch exactly), masses 1 to 1.98
+// kg, stacked on the ground at rest for 5 s: nothing moves sideways, nothing
+// sinks, and each contact carries exactly the weight above it.
+StressCase column_case() {
+    Setting s;
+    s.e = 0.5;
+    s.duration = 5.0;
+    s.resting = true;
+    Json bodies = Json::array({wall("ground", {5.0, 0.5}, {0.0, -0.5})});
+    StressChecks checks;
+    SupportCheck support;
+    for (int i = 0; i < 50; ++i) {
+        const double y = 0.125 + 0.25 * static_cast<double>(i);
+        bodies.push_back(box("box-" + std::to_string(i), {0.5, 0.125},
+                             1.0 + 0.02 * static_cast<double>(i), {0.0, y}, 0.0));
+        support.column.push_back(i + 1);
+        if (i > 0) {
+            checks.sides.push_back({i + 1, i, {0.0, 1.0}});
+        }
+    }
+    checks.overlap_bound = 1e-6;
+    checks.drifts = {{{1.0, 0.0}, 1e-6}, {{0.0, 1.0}, 1e-6}};
+    StressCase c =
+        make_case("pile-column-50",
+                  "dense contact: a column of 50 boxes 1 x 0.25 m (1 to 1.98 kg) at rest "
+                  "on the ground for 5 s, time-stepping",
+                  s, std::move(bodies), checks);
+    support.rtol = support_rtol(c.scene);
+    c.checks.supports = {support};
+    return dense(std::move(c), Stepping::world);
+}
+
+// Two stacks on one ground, 1000 kg on 1 kg and 1 kg on 1000 kg (boxes 1 x
+// 0.5 m), at rest for 3 s: both hold, and the lower contact of each carries
+// 1001 |g| h per step, the upper one 1000 |g| h or |g| h.
+StressCase mass_stack_case() {
+    Setting s;
+    s.e = 0.5;
+    s.duration = 3.0;
+    s.resting = true;
+    const Vec2 half{0.5, 0.25};
+    Json bodies = Json::array({wall("ground", {5.0, 0.5}, {0.0, -0.5}),
+                               box("light-under", half, 1.0, {-2.0, 0.25}, 0.0),
+                               box("heavy-on-top", half, 1e3, {-2.0, 0.75}, 0.0),
+                               box("heavy-under", half, 1e3, {2.0, 0.25}, 0.0),
+                               box("light-on-top", half, 1.0, {2.0, 0.75}, 0.0)});
+    StressChecks checks;
+    checks.sides = {{2, 1, {0.0, 1.0}}, {4, 3, {0.0, 1.0}}};
+    checks.overlap_bound = 1e-6;
+    checks.drifts = {{{1.0, 0.0}, 1e-6}, {{0.0, 1.0}, 1e-6}};
+    StressCase c =
+        make_case("pile-mass-1e3",
+                  "dense contact, mass ratio 1:1000: a 1000 kg box resting on a 1 kg box "
+                  "and a 1 kg box on a 1000 kg box, 3 s, time-stepping",
+                  s, std::move(bodies), checks);
+    const double rtol = support_rtol(c.scene);
+    c.checks.supports = {{{1, 2}, rtol}, {{3, 4}, rtol}};
+    return dense(std::move(c), Stepping::world);
+}
+
+// The scale scene pile-discs-1000's block: 1000 discs of radius 0.05 to 0.25 m
+// and density 1 to 4 kg/m^2 released at rest on a 0.55 m lattice into an open
+// box, e = 0.5, local stepping, 8 s. It must come to rest by 6 s (kinetic
+// energy below 1e-9 of what the fall released), never overlap beyond 1e-6 m,
+// and never gain energy.
+StressCase pile_discs_case() {
+    Setting s;
+    s.e = 0.5;
+    s.duration = 8.0;
+    s.resting = true;
+    Json solver = {{"integrator", "symplectic-euler"}, {"toi", "secant"}, {"resting", true}};
+    const Json document = {{"schema", scene_schema},
+                           {"name", "pile-discs-1000"},
+                           {"restitution", s.e},
+                           {"dt", s.dt},
+                           {"duration", s.duration},
+                           {"solver", solver},
+                           {"pile",
+                            {{"count", 1000},
+                             {"shape", "circle"},
+                             {"size", {0.05, 0.25}},
+                             {"density", {1, 4}},
+                             {"spacing", 0.55},
+                             {"random_angles", false},
+                             {"seed", 1}}}};
+    StressCase c;
+    c.name = "pile-discs-1000";
+    c.description = "dense contact at scale: 1000 discs of mixed sizes (1:5) and masses (1:100) "
+                    "poured into an open box, e = 0.5, local stepping, at rest by 6 s";
+    c.scene = parse_scene(document.dump(), "stress/" + c.name);
+    c.scene.description = c.description;
+    c.checks.overlap_bound = 1e-6;
+    c.checks.at_rest = AtRestCheck{6.0, 1e-9};
+    c.slow = true;
+    return dense(std::move(c), Stepping::local);
+}
+
 } // namespace
 
 std::vector<StressCase> stress_cases() {
@@ -293,6 +413,9 @@ std::vector<StressCase> stress_cases() {
     cases.push_back(tilt_case("tilt-simultaneous", "simultaneous"));
     cases.push_back(corner_case("reference-face"));
     cases.push_back(corner_case("bisector"));
+    cases.push_back(column_case());
+    cases.push_back(mass_stack_case());
+    cases.push_back(pile_discs_case());
     return cases;
 }
 
