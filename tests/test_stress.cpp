@@ -378,6 +378,20 @@ TEST_CASE("the pile rows' checkers catch a violation made by hand", "[unit][stre
         CHECK(sinking.worst == Approx(1e-6 / (4.0 * g * h)).epsilon(1e-6));
         CHECK(sinking.detail.find("under 'under'") != std::string::npos);
     }
+    SECTION("energy gained at rest: judged against the energy held above the ground") {
+        // 1 kg at 0.25 m and 3 kg at 0.75 m above the ground's top: 2.5 g J.
+        const Scene scene = column_of_two();
+        StressChecks checks;
+        checks.energy_scale_floor = 2.5 * 9.81;
+        StressMonitor monitor(scene, checks);
+        std::vector<BodyState> states = states_of(scene);
+        monitor.observe(0.0, states);
+        states[2].position.y += 1e-12; // 3 g 1e-12 J: 1.2e-12 of the floor
+        monitor.observe(0.1, states);
+        const StressRow row = row_of(monitor.rows(), "energy gain");
+        CHECK_FALSE(row.passed);
+        CHECK(row.worst == Approx(3.0 * 9.81 * 1e-12 / (2.5 * 9.81)).epsilon(1e-3));
+    }
     SECTION("an overlap bound of 1e-6 m, found among 1000 bodies by the grid") {
         const std::vector<StressCase> cases = stress_cases();
         const StressCase& pile = case_named(cases, "pile-discs-1000");

@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -129,7 +130,7 @@ void report(benchmark::State& state, const Scene& scene, const Simulator& simula
 // Settling: a fresh simulator per iteration (built with the clock stopped),
 // stepped through the first settling_seconds. The overlap is measured in every
 // frame of the first iteration (the runs are deterministic, so all are alike).
-void settling(benchmark::State& state, const std::string& path, bool box2d) {
+void settling_runs(benchmark::State& state, const std::string& path, bool box2d) {
     const Scene scene = load_scene(path);
     const long long steps = steps_in(settling_seconds, scene.dt);
     Progress progress(scene.name + (box2d ? " box2d" : " impulse") + " settling",
@@ -151,6 +152,20 @@ void settling(benchmark::State& state, const std::string& path, bool box2d) {
     report(state, scene, *simulator, steps, deepest);
 }
 
+// A simulator that refuses the scene or stops (an InputError) ends its
+// benchmark with the engine's sentence instead of ending the process.
+template <typename Run> void guarded(benchmark::State& state, const Run& run) {
+    try {
+        run();
+    } catch (const std::exception& error) {
+        state.SkipWithError(error.what());
+    }
+}
+
+void settling(benchmark::State& state, const std::string& path, bool box2d) {
+    guarded(state, [&] { settling_runs(state, path, box2d); });
+}
+
 // The settled piles, one per benchmark, kept for the process: Google Benchmark
 // calls a function several times while it picks an iteration count, and the
 // pile should settle only once.
@@ -163,7 +178,8 @@ struct SettledPile {
 
 SettledPile& settled_pile(const std::string& path, bool box2d) {
     static std::map<std::pair<std::string, bool>, SettledPile> cache;
-    SettledPile& pile = cache[{path, box2d}];
+    const std::pair<std::string, bool> key{path, box2d};
+    SettledPile& pile = cache[key];
     if (!pile.simulator) {
         pile.scene = load_scene(path);
         pile.simulator = simulator_for(pile.scene, box2d);
@@ -171,8 +187,13 @@ SettledPile& settled_pile(const std::string& path, bool box2d) {
         Progress progress(pile.scene.name + (box2d ? " box2d" : " impulse") + " to rest",
                           progress_wanted(false));
         const long long steps = steps_in(settled_seconds, pile.scene.dt);
-        for (long long k = 0; k < steps; ++k) {
-            pile.stepper->step(nullptr, true);
+        try {
+            for (long long k = 0; k < steps; ++k) {
+                pile.stepper->step(nullptr, true);
+            }
+        } catch (...) {
+            cache.erase(key); // a pile that stopped on the way is not settled
+            throw;
         }
         pile.stepper->deepest = 0.0; // the settled phase's own overlap from here on
         pile.at_rest = pile.simulator->work();
@@ -182,11 +203,13 @@ SettledPile& settled_pile(const std::string& path, bool box2d) {
 
 // Settled: one step per iteration of a pile that has come to rest.
 void settled(benchmark::State& state, const std::string& path, bool box2d) {
-    SettledPile& pile = settled_pile(path, box2d);
-    for (auto _ : state) {
-        pile.stepper->step(&state, true);
-    }
-    report(state, pile.scene, *pile.simulator, 1, pile.stepper->deepest, pile.at_rest);
+    guarded(state, [&] {
+        SettledPile& pile = settled_pile(path, box2d);
+        for (auto _ : state) {
+            pile.stepper->step(&state, true);
+        }
+        report(state, pile.scene, *pile.simulator, 1, pile.stepper->deepest, pile.at_rest);
+    });
 }
 
 // What the table shows of one benchmark.

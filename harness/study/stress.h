@@ -103,6 +103,11 @@ struct StressChecks {
     // positions grow by it (0: no such term).
     double offset = 0.0;
     std::optional<double> overlap_bound; // m; issue 14's 1e-6 for the piles
+    // The least scale energy changes are relative to (J). A resting pile's
+    // totals, measured from where it started, are all but 0, so its rounding
+    // would be judged against nothing; a pile row gives the potential energy
+    // its bodies hold above the ground, the terms the engine's energy is made of.
+    double energy_scale_floor = 0.0;
     std::vector<DriftCheck> drifts;
     std::optional<AtRestCheck> at_rest;
     std::vector<SupportCheck> supports;

@@ -276,6 +276,17 @@ double support_rtol(const Scene& scene) {
     return scene.solver.contact_tolerance / (length(scene.gravity) * scene.dt * scene.dt);
 }
 
+// The potential energy of the dynamic bodies above the height `ground`: the
+// energy scale of a pile at rest there (StressChecks::energy_scale_floor).
+double potential_above(const Scene& scene, double ground) {
+    double energy = 0.0;
+    for (const SceneBody& body : scene.bodies) {
+        energy +=
+            body.is_static ? 0.0 : body.mass * length(scene.gravity) * (body.position.y - ground);
+    }
+    return energy;
+}
+
 // 50 boxes 1.0 x 0.25 m (dyadic, so the faces touch exactly), masses 1 to 1.98
 // kg, stacked on the ground at rest for 5 s: nothing moves sideways, nothing
 // sinks, and each contact carries exactly the weight above it.
@@ -305,6 +316,7 @@ StressCase column_case() {
                   s, std::move(bodies), checks);
     support.rtol = support_rtol(c.scene);
     c.checks.supports = {support};
+    c.checks.energy_scale_floor = potential_above(c.scene, 0.0);
     return dense(std::move(c), Stepping::world);
 }
 
@@ -333,6 +345,7 @@ StressCase mass_stack_case() {
                   s, std::move(bodies), checks);
     const double rtol = support_rtol(c.scene);
     c.checks.supports = {{{1, 2}, rtol}, {{3, 4}, rtol}};
+    c.checks.energy_scale_floor = potential_above(c.scene, 0.0);
     return dense(std::move(c), Stepping::world);
 }
 

@@ -156,7 +156,7 @@ void StressMonitor::observe_totals(double t, const std::vector<BodyState>& state
         std::max(angular_momentum_drift_, std::abs(now.angular_momentum - start_.angular_momentum));
     momentum_scale_ = std::max(momentum_scale_, now.momentum_scale);
     angular_momentum_scale_ = std::max(angular_momentum_scale_, now.angular_momentum_scale);
-    energy_scale_ = std::max(energy_scale_, now.energy_scale);
+    energy_scale_ = std::max({energy_scale_, now.energy_scale, checks_.energy_scale_floor});
     const double change = now.energy - start_.energy;
     if (change > energy_gain_) {
         energy_gain_ = change;
