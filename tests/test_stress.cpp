@@ -427,8 +427,8 @@ TEST_CASE("the stress matrix's pile rows: what each asks of the engine", "[unit]
     CHECK(column.scene.solver.resting_method == RestingMethod::time_stepping);
     REQUIRE(column.checks.supports.size() == 1);
     CHECK(column.checks.supports[0].column.size() == 50);
-    // d / (|g| h^2): 1e-9 m over 9.81 m/s^2 times (1/60 s)^2.
-    CHECK(column.checks.supports[0].rtol == Approx(1e-9 * 3600.0 / 9.81).epsilon(1e-12));
+    // d / (|g| h^2): 1e-9 m over 9.81 m/s^2 times (1/64 s)^2.
+    CHECK(column.checks.supports[0].rtol == Approx(1e-9 * 4096.0 / 9.81).epsilon(1e-12));
     CHECK(column.checks.overlap_bound == 1e-6);
     CHECK_FALSE(column.slow);
 
