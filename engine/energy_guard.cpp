@@ -55,10 +55,6 @@ void guard_energy(World& world, TimeSteppingScratch& s) {
             const std::size_t b =
                 static_cast<std::size_t>(s.islands.bodies[static_cast<std::size_t>(k)]);
             BodyState& state = world.bodies[b].state;
-            if (!scale) {
-                state.position = s.start[b].position;
-                state.angle = s.start[b].angle;
-            }
             state.velocity = factor * state.velocity;
             state.angular_velocity = factor * state.angular_velocity;
         }

@@ -1,79 +1,15 @@
 #include "island_lcp.h"
 
 #include "lcp.h"
+#include "pgs.h"
+
+#include <algorithm>
 
 namespace impulse {
 
 namespace {
 
-// Temporary until islands.cpp lands: union-find over the dynamic ends of the
-// links, islands numbered by their smallest body.
-int root_of(std::vector<int>& parent, int i) {
-    while (parent[static_cast<std::size_t>(i)] >= 0) {
-        const int up = parent[static_cast<std::size_t>(i)];
-        if (parent[static_cast<std::size_t>(up)] >= 0) {
-            parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(up)];
-        }
-        i = up;
-    }
-    return i;
-}
-
-} // namespace
-
-void group_islands(const std::vector<Body>& bodies, const std::vector<IslandLink>& links,
-                   Islands& out, IslandScratch& s) {
-    const std::size_t n = bodies.size();
-    s.parent.assign(n, -1);
-    s.island_of.assign(n, -1);
-    s.touched.assign(n, 0);
-    for (const IslandLink& link : links) {
-        s.touched[static_cast<std::size_t>(link.a)] = 1;
-        if (bodies[static_cast<std::size_t>(link.b)].is_static()) {
-            continue;
-        }
-        s.touched[static_cast<std::size_t>(link.b)] = 1;
-        const int ra = root_of(s.parent, link.a);
-        const int rb = root_of(s.parent, link.b);
-        if (ra != rb) {
-            s.parent[static_cast<std::size_t>(ra < rb ? rb : ra)] = ra < rb ? ra : rb;
-        }
-    }
-    int count = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        if (s.touched[i] != 0) {
-            const int r = root_of(s.parent, static_cast<int>(i));
-            if (s.island_of[static_cast<std::size_t>(r)] < 0) {
-                s.island_of[static_cast<std::size_t>(r)] = count++;
-            }
-            s.island_of[i] = s.island_of[static_cast<std::size_t>(r)];
-        }
-    }
-    out.body_offsets.assign(static_cast<std::size_t>(count) + 1, 0);
-    out.link_offsets.assign(static_cast<std::size_t>(count) + 1, 0);
-    out.bodies.clear();
-    out.links_of.clear();
-    for (int isl = 0; isl < count; ++isl) {
-        for (std::size_t i = 0; i < n; ++i) {
-            if (s.touched[i] != 0 && s.island_of[i] == isl) {
-                out.bodies.push_back(static_cast<int>(i));
-            }
-        }
-        out.body_offsets[static_cast<std::size_t>(isl) + 1] = static_cast<int>(out.bodies.size());
-        for (std::size_t l = 0; l < links.size(); ++l) {
-            if (s.island_of[static_cast<std::size_t>(links[l].a)] == isl) {
-                out.links_of.push_back(static_cast<int>(l));
-            }
-        }
-        out.link_offsets[static_cast<std::size_t>(isl) + 1] = static_cast<int>(out.links_of.size());
-    }
-    if (count == 0) {
-        out.body_offsets.clear();
-        out.link_offsets.clear();
-    }
-}
-
-IslandSolve solve_island(World& world, IslandProblem& problem, double /*tolerance*/) {
+IslandSolve solve_directly(World& world, IslandProblem& problem) {
     const std::size_t n = problem.points.size();
     IslandSolve result;
     ++world.work.direct_solves;
@@ -93,6 +29,58 @@ IslandSolve solve_island(World& world, IslandProblem& problem, double /*toleranc
         }
     }
     return result;
+}
+
+// Gauss-Seidel sweeps in the order of the points' heights against gravity,
+// highest first (ties in the given order): a column's weight then travels down
+// in one sweep and the alternate sweep carries the floor's answer back up
+// (shock propagation, Guendelman 2003).
+IslandSolve solve_iteratively(World& world, IslandProblem& p, double tolerance) {
+    const std::size_t n = p.points.size();
+    p.order.resize(n);
+    p.height.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        p.order[i] = static_cast<int>(i);
+        p.height[i] = -dot(world.gravity, p.points[i].contact.point);
+    }
+    std::sort(p.order.begin(), p.order.end(), [&](int x, int y) {
+        const double hx = p.height[static_cast<std::size_t>(x)];
+        const double hy = p.height[static_cast<std::size_t>(y)];
+        return hx != hy ? hx > hy : x < y;
+    });
+    p.sorted_points.clear();
+    p.sorted_q.clear();
+    p.sorted_lambda.clear();
+    for (const int i : p.order) {
+        p.sorted_points.push_back(p.points[static_cast<std::size_t>(i)]);
+        p.sorted_q.push_back(p.q[static_cast<std::size_t>(i)]);
+        p.sorted_lambda.push_back(p.lambda[static_cast<std::size_t>(i)]);
+    }
+    PgsSettings settings;
+    settings.tolerance = tolerance;
+    settings.max_sweeps = world.solver.max_search_iterations;
+    const PgsResult r =
+        solve_pgs(world, p.sorted_points, p.sorted_q, p.sorted_lambda, settings, p.pgs);
+    world.work.solver_sweeps += r.sweeps;
+    if (!r.converged) {
+        ++world.work.unconverged_islands;
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+        p.lambda[static_cast<std::size_t>(p.order[k])] = p.sorted_lambda[k];
+    }
+    IslandSolve result;
+    result.converged = r.converged;
+    result.residual = r.residual;
+    return result;
+}
+
+} // namespace
+
+IslandSolve solve_island(World& world, IslandProblem& problem, double tolerance) {
+    if (problem.points.size() <= direct_solve_points) {
+        return solve_directly(world, problem);
+    }
+    return solve_iteratively(world, problem, tolerance);
 }
 
 } // namespace impulse

@@ -24,10 +24,6 @@ struct IslandSolve {
 // (A = J M^-1 J^T at the bodies' current states) into problem.lambda, which
 // holds the warm start on entry (used by the iterative solver only).
 // tolerance is the iterative solver's residual bound (a velocity).
-// Temporary, until islands.cpp lands: find_islands' contract (islands.h).
-void group_islands(const std::vector<Body>& bodies, const std::vector<IslandLink>& links,
-                   Islands& out, IslandScratch& scratch);
-
 IslandSolve solve_island(World& world, IslandProblem& problem, double tolerance);
 
 } // namespace impulse

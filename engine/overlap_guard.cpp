@@ -28,79 +28,57 @@ bool measure_gaps(World& world, TimeSteppingScratch& s) {
     return deep;
 }
 
-void gather_touching_points(World& world, TimeSteppingScratch& s) {
+// Moves the bodies of pair p apart by h M^-1 J^T m, where m solves the pair's
+// own position problem, w = A m + g / h >= 0 over its points within d, at the
+// poses as they are now (earlier pairs of this pass may have moved them).
+void separate_pair(World& world, double h, TimeSteppingScratch& s, std::size_t p) {
     const double d = world.solver.contact_tolerance;
-    s.guard_points.clear();
-    s.guard_links.clear();
-    for (std::size_t p = 0; p < s.pairs.size(); ++p) {
-        if (s.pair_gap[p] > d) {
-            continue;
-        }
-        const CandidatePair& pair = s.pairs[p];
-        const std::size_t a = static_cast<std::size_t>(pair.a);
-        const std::size_t b = static_cast<std::size_t>(pair.b);
-        ++world.work.narrow_phase_queries;
-        const Manifold m = collide(world.bodies[a].shape, s.poses[a], world.bodies[b].shape,
-                                   s.poses[b], d, world.solver.vertex_normal);
-        for (int k = 0; k < m.point_count; ++k) {
-            s.guard_points.push_back(candidate_point(world, static_cast<int>(p), pair.a, pair.b,
-                                                     m.points[static_cast<std::size_t>(k)]));
-            s.guard_links.push_back({pair.a, pair.b});
-        }
-    }
-}
-
-// Moves island i's bodies by h M^-1 J^T m, where m solves its position problem.
-void separate_island(World& world, double h, TimeSteppingScratch& s, int i) {
-    const double d = world.solver.contact_tolerance;
-    IslandProblem& p = s.problem;
-    p.points.clear();
-    p.q.clear();
+    const CandidatePair& pair = s.pairs[p];
+    const std::size_t a = static_cast<std::size_t>(pair.a);
+    const std::size_t b = static_cast<std::size_t>(pair.b);
+    Body& body_a = world.bodies[a];
+    Body& body_b = world.bodies[b];
+    ++world.work.narrow_phase_queries;
+    const Manifold m = collide(body_a.shape, transform_of(body_a.state), body_b.shape,
+                               transform_of(body_b.state), d, world.solver.vertex_normal);
+    IslandProblem& problem = s.problem;
+    problem.points.clear();
+    problem.q.clear();
     bool deep = false;
-    for (int l = s.guard_islands.link_offsets[static_cast<std::size_t>(i)];
-         l < s.guard_islands.link_offsets[static_cast<std::size_t>(i) + 1]; ++l) {
-        const ContactPoint& point = s.guard_points[static_cast<std::size_t>(
-            s.guard_islands.links_of[static_cast<std::size_t>(l)])];
-        p.points.push_back(point);
-        p.q.push_back(point.contact.separation / h);
-        deep = deep || point.contact.separation < -d;
+    for (int k = 0; k < m.point_count; ++k) {
+        const Contact& c = m.points[static_cast<std::size_t>(k)];
+        problem.points.push_back(candidate_point(world, static_cast<int>(p), pair.a, pair.b, c));
+        problem.q.push_back(c.separation / h);
+        deep = deep || c.separation < -d;
     }
     if (!deep) {
         return;
     }
-    p.lambda.assign(p.points.size(), 0.0);
-    if (!solve_island(world, p, d / h).solved) {
+    problem.lambda.assign(problem.points.size(), 0.0);
+    if (!solve_island(world, problem, d / h).solved) {
         return; // the overlap stays, and max-overlap judges it
     }
-    const int b0 = s.guard_islands.body_offsets[static_cast<std::size_t>(i)];
-    const int b1 = s.guard_islands.body_offsets[static_cast<std::size_t>(i) + 1];
-    s.saved.clear();
-    for (int k = b0; k < b1; ++k) {
-        BodyState& state = world
-                               .bodies[static_cast<std::size_t>(
-                                   s.guard_islands.bodies[static_cast<std::size_t>(k)])]
-                               .state;
-        s.saved.push_back(state);
-        state.velocity = {};
-        state.angular_velocity = 0.0;
+    // The correction as a velocity change, applied to positions only.
+    const BodyState before_a = body_a.state;
+    const BodyState before_b = body_b.state;
+    for (Body* body : {&body_a, &body_b}) {
+        body->state.velocity = {};
+        body->state.angular_velocity = 0.0;
     }
-    for (std::size_t j = 0; j < p.points.size(); ++j) {
-        if (p.lambda[j] > 0.0) {
-            const ContactPoint& point = p.points[j];
-            apply_impulse(world.bodies[static_cast<std::size_t>(point.a)],
-                          world.bodies[static_cast<std::size_t>(point.b)], point.contact.point,
-                          point.contact.normal, p.lambda[j]);
+    for (std::size_t j = 0; j < problem.points.size(); ++j) {
+        if (problem.lambda[j] > 0.0) {
+            const ContactPoint& point = problem.points[j];
+            apply_impulse(body_a, body_b, point.contact.point, point.contact.normal,
+                          problem.lambda[j]);
         }
     }
-    for (int k = b0; k < b1; ++k) {
-        Body& body = world.bodies[static_cast<std::size_t>(
-            s.guard_islands.bodies[static_cast<std::size_t>(k)])];
-        const BodyState& before = s.saved[static_cast<std::size_t>(k - b0)];
-        BodyState& state = body.state;
-        state.position = before.position + h * state.velocity;
-        state.angle = before.angle + h * state.angular_velocity;
-        state.velocity = before.velocity;
-        state.angular_velocity = before.angular_velocity;
+    for (auto [body, before] : {std::pair<Body*, const BodyState*>{&body_a, &before_a},
+                                std::pair<Body*, const BodyState*>{&body_b, &before_b}}) {
+        BodyState& state = body->state;
+        state.position = before->position + h * state.velocity;
+        state.angle = before->angle + h * state.angular_velocity;
+        state.velocity = before->velocity;
+        state.angular_velocity = before->angular_velocity;
     }
 }
 
@@ -112,10 +90,10 @@ void guard_overlaps(World& world, double h, TimeSteppingScratch& s) {
             return;
         }
         ++world.work.overlap_guard_passes;
-        gather_touching_points(world, s);
-        group_islands(world.bodies, s.guard_links, s.guard_islands, s.island_scratch);
-        for (int i = 0; i < s.guard_islands.count(); ++i) {
-            separate_island(world, h, s, i);
+        for (std::size_t p = 0; p < s.pairs.size(); ++p) {
+            if (s.pair_gap[p] < -world.solver.contact_tolerance) {
+                separate_pair(world, h, s, p);
+            }
         }
     }
 }

@@ -178,7 +178,7 @@ std::optional<StepError> TimeStep::solve_islands() {
     find_contact_candidates(world_, h_, s_);
     look_up_warm_start(world_, s_);
     s_.held.assign(s_.points.size(), 0.0);
-    group_islands(world_.bodies, s_.links, s_.islands, s_.island_scratch);
+    find_islands(world_.bodies, s_.links, s_.islands, s_.island_scratch);
 
     const std::size_t n = world_.bodies.size();
     s_.in_island.assign(n, 0);

@@ -27,6 +27,13 @@ struct IslandProblem {
     std::vector<double> q;
     std::vector<double> lambda;
     std::vector<double> A; // row-major Delassus matrix of a direct solve
+    // An iterative solve's sweep order (by height against gravity) and the
+    // problem in that order.
+    std::vector<int> order;
+    std::vector<double> height;
+    std::vector<ContactPoint> sorted_points;
+    std::vector<double> sorted_q;
+    std::vector<double> sorted_lambda;
     PgsScratch pgs;
 };
 
@@ -52,12 +59,7 @@ struct TimeSteppingScratch {
     std::vector<double> island_energy; // per island: energy at the step's start
     std::vector<char> island_pushed;   // per island: some impulse acted
     IslandProblem problem;
-    // The overlap guard's own separations (per candidate pair), points and islands.
-    std::vector<double> pair_gap;
-    std::vector<ContactPoint> guard_points;
-    std::vector<IslandLink> guard_links;
-    std::vector<BodyState> saved; // per body of a guard island: its state before the guard
-    Islands guard_islands;
+    std::vector<double> pair_gap; // the overlap guard's separation of each candidate pair
 };
 
 } // namespace impulse
