@@ -439,7 +439,7 @@ TEST_CASE("the stress matrix's pile rows: what each asks of the engine", "[unit]
 
     const StressCase& discs = case_named(cases, "pile-discs-1000");
     CHECK(discs.scene.solver.stepping == Stepping::local);
-    CHECK(discs.scene.solver.resting_method == RestingMethod::time_stepping);
+    CHECK(time_stepping_from_start(discs.scene.solver)); // resting with local stepping
     REQUIRE(discs.checks.at_rest);
     CHECK(discs.checks.at_rest->after == 6.0);
     CHECK(discs.checks.energy_gain);

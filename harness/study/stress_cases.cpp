@@ -50,6 +50,9 @@ struct Setting {
     bool resting = false;
     std::string contacts = "single";
     std::string vertex_normal = "reference-face";
+    // Written only when set, as a user would: the seed's cases never name them.
+    std::string resting_method; // "time-stepping" for the pile rows
+    std::string stepping;       // "local" for the pile of 1000
 };
 
 // Through the scene format and its loader, so every case is a valid scene
@@ -61,6 +64,12 @@ Scene scene_of(const std::string& name, const std::string& description, const Se
     solver["resting"] = s.resting;
     solver["contacts"] = s.contacts;
     solver["vertex_normal"] = s.vertex_normal;
+    if (!s.resting_method.empty()) {
+        solver["resting_method"] = s.resting_method;
+    }
+    if (!s.stepping.empty()) {
+        solver["stepping"] = s.stepping;
+    }
     const Json document = {
         {"schema", scene_schema},        {"name", name},       {"description", description},
         {"gravity", pair_of(s.gravity)}, {"restitution", s.e}, {"dt", s.dt},
@@ -255,18 +264,6 @@ StressCase rest_case() {
 
 // ---------------------------------------------------------------- piles (issue 14)
 
-// Dense contact for a pile row: resting on, by time-stepping (engine.md,
-// "Dense contact"), with the scene's stepping.
-//
-// Set on the loaded scene rather than written into its file while the scene
-// keys for them (solver.resting_method, local stepping with resting) are
-// another part's to add: the engine reads the same settings either way.
-StressCase dense(StressCase c, Stepping stepping) {
-    c.scene.solver.resting_method = RestingMethod::time_stepping;
-    c.scene.solver.stepping = stepping;
-    return c;
-}
-
 // What a column at rest may be off by per step: the solver stops once no point
 // would move by more than the contact tolerance d within the step, a velocity
 // of d / h, which changes a body's momentum by m d / h against its weight's
@@ -300,6 +297,7 @@ StressCase column_case() {
     s.dt = 1.0 / 64.0;
     s.duration = 3.0;
     s.resting = true;
+    s.resting_method = "time-stepping";
     Json bodies = Json::array({wall("ground", {5.0, 0.5}, {0.0, -0.5})});
     StressChecks checks;
     SupportCheck support;
@@ -319,7 +317,7 @@ StressCase column_case() {
     support.rtol = support_rtol(c.scene);
     c.checks.supports = {support};
     c.checks.energy_scale_floor = potential_above(c.scene, 0.0);
-    return dense(std::move(c), Stepping::world);
+    return c;
 }
 
 // Two stacks on one ground, 1000 kg on 1 kg and 1 kg on 1000 kg (boxes 1 x
@@ -330,6 +328,7 @@ StressCase mass_stack_case() {
     s.e = 0.5;
     s.duration = 3.0;
     s.resting = true;
+    s.resting_method = "time-stepping";
     const Vec2 half{0.5, 0.25};
     Json bodies = Json::array({wall("ground", {5.0, 0.5}, {0.0, -0.5}),
                                box("light-under", half, 1.0, {-2.0, 0.25}, 0.0),
@@ -348,7 +347,7 @@ StressCase mass_stack_case() {
     const double rtol = support_rtol(c.scene);
     c.checks.supports = {{{1, 2}, rtol}, {{3, 4}, rtol}};
     c.checks.energy_scale_floor = potential_above(c.scene, 0.0);
-    return dense(std::move(c), Stepping::world);
+    return c;
 }
 
 // The scale scene pile-discs-1000's block: 1000 discs of radius 0.05 to 0.25 m
@@ -357,35 +356,29 @@ StressCase mass_stack_case() {
 // energy below 1e-9 of what the fall released), never overlap beyond 1e-6 m,
 // and never gain energy.
 StressCase pile_discs_case() {
-    Setting s;
-    s.e = 0.5;
-    s.duration = 8.0;
-    s.resting = true;
-    Json solver = {{"integrator", "symplectic-euler"}, {"toi", "secant"}, {"resting", true}};
-    const Json document = {{"schema", scene_schema},
-                           {"name", "pile-discs-1000"},
-                           {"restitution", s.e},
-                           {"dt", s.dt},
-                           {"duration", s.duration},
-                           {"solver", solver},
-                           {"pile",
-                            {{"count", 1000},
-                             {"shape", "circle"},
-                             {"size", {0.05, 0.25}},
-                             {"density", {1, 4}},
-                             {"spacing", 0.55},
-                             {"random_angles", false},
-                             {"seed", 1}}}};
+    const std::string name = "pile-discs-1000";
+    const std::string description =
+        "dense contact at scale: 1000 discs of mixed sizes (1:5) and masses (1:100) poured into "
+        "an open box, e = 0.5, resting with local stepping (time-stepping), at rest by 6 s";
+    const Json solver = {{"integrator", "symplectic-euler"},
+                         {"toi", "secant"},
+                         {"resting", true},
+                         {"stepping", "local"}};
+    const Json pile = {{"count", 1000},     {"shape", "circle"}, {"size", {0.05, 0.25}},
+                       {"density", {1, 4}}, {"spacing", 0.55},   {"random_angles", false},
+                       {"seed", 1}};
+    const Json document = {{"schema", scene_schema},     {"name", name},
+                           {"description", description}, {"restitution", 0.5},
+                           {"dt", 1.0 / 60.0},           {"duration", 8.0},
+                           {"solver", solver},           {"pile", pile}};
     StressCase c;
-    c.name = "pile-discs-1000";
-    c.description = "dense contact at scale: 1000 discs of mixed sizes (1:5) and masses (1:100) "
-                    "poured into an open box, e = 0.5, local stepping, at rest by 6 s";
-    c.scene = parse_scene(document.dump(), "stress/" + c.name);
-    c.scene.description = c.description;
+    c.name = name;
+    c.description = description;
+    c.scene = parse_scene(document.dump(), "stress/" + name);
     c.checks.overlap_bound = 1e-6;
     c.checks.at_rest = AtRestCheck{6.0, 1e-9};
     c.slow = true;
-    return dense(std::move(c), Stepping::local);
+    return c;
 }
 
 } // namespace
