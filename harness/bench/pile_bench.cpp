@@ -22,6 +22,7 @@
 #include "scene.h"
 #include "simulator.h"
 
+#include <algorithm>
 #include <benchmark/benchmark.h>
 #include <cmath>
 #include <cstdio>
@@ -218,6 +219,7 @@ struct Measured {
     double overlap = 0.0;       // m
     double sweeps = -1.0;       // per step; impulse only
     double islands = -1.0;
+    std::string stopped; // the engine's sentence when it refused or stopped
 };
 
 // Keeps each benchmark's median CPU time per body-step for the table at the end.
@@ -235,6 +237,7 @@ class TableReporter : public benchmark::ConsoleReporter {
   private:
     void keep(const Run& run) {
         if (run.error_occurred) {
+            measured_[run.run_name.function_name].stopped = run.error_message;
             return;
         }
         const bool aggregate = run.run_type == Run::RT_Aggregate;
@@ -292,46 +295,76 @@ std::string overlap_ratio(double theirs, double ours) {
     return number(theirs / ours, "%.3g");
 }
 
-// Markdown: one row per pile, N and phase, then each pile's 10^4 / 10^2.
+// One cell of a row: the value, "-" when not measured, or a footnote number
+// when the engine stopped (its sentence is printed under the table).
+std::string cell(const Measured* m, double value, const char* format,
+                 std::vector<std::string>& stops) {
+    if (m != nullptr && !m->stopped.empty()) {
+        const auto known = std::find(stops.begin(), stops.end(), m->stopped);
+        const auto index = static_cast<std::size_t>(known - stops.begin()) + 1;
+        if (known == stops.end()) {
+            stops.push_back(m->stopped);
+        }
+        return "stopped [" + std::to_string(index) + "]";
+    }
+    return m == nullptr || value < 0.0 ? std::string("-") : number(value, format);
+}
+
+// A table row: pile, N, phase, then both engines side by side.
+std::string row_text(const std::string& pile, int n, const std::string& phase, const Measured* ours,
+                     const Measured* theirs, std::vector<std::string>& stops) {
+    const Measured none;
+    const Measured& o = ours != nullptr ? *ours : none;
+    const Measured& b = theirs != nullptr ? *theirs : none;
+    const bool both =
+        ours != nullptr && theirs != nullptr && o.stopped.empty() && b.stopped.empty();
+    const std::vector<std::string> cells{pile,
+                                         std::to_string(n),
+                                         phase,
+                                         cell(ours, o.per_body_step, "%.3f", stops),
+                                         cell(theirs, b.per_body_step, "%.3f", stops),
+                                         both ? number(o.per_body_step / b.per_body_step, "%.2f")
+                                              : "-",
+                                         cell(ours, o.overlap, "%.1e", stops),
+                                         cell(theirs, b.overlap, "%.1e", stops),
+                                         both ? overlap_ratio(b.overlap, o.overlap) : "-",
+                                         cell(ours, o.sweeps, "%.1f", stops),
+                                         cell(ours, o.islands, "%.1f", stops)};
+    std::string text = "|";
+    for (const std::string& c : cells) {
+        text += " " + c + " |";
+    }
+    return text;
+}
+
+// Markdown: one row per pile, N and phase, the footnotes, then each pile's 10^4 / 10^2.
 void TableReporter::print_table() const {
     std::printf("\n| pile | N | phase | impulse µs/body-step | Box2D µs/body-step | impulse / "
                 "Box2D | impulse overlap (m) | Box2D overlap (m) | Box2D / impulse overlap | "
                 "sweeps/step | islands/step |\n");
     std::printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    std::vector<std::string> stops;
     for (const std::string& pile : piles) {
         for (const int n : sizes) {
             for (const std::string& phase : phases) {
                 const Measured* ours = find(pile, n, phase, "impulse");
                 const Measured* theirs = find(pile, n, phase, "box2d");
-                if (ours == nullptr && theirs == nullptr) {
-                    continue;
+                if (ours != nullptr || theirs != nullptr) {
+                    std::printf("%s\n", row_text(pile, n, phase, ours, theirs, stops).c_str());
                 }
-                const auto cell = [](const Measured* m, double Measured::*field,
-                                     const char* format) {
-                    return m == nullptr || m->*field < 0.0 ? std::string("-")
-                                                           : number(m->*field, format);
-                };
-                std::printf(
-                    "| %s | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", pile.c_str(), n,
-                    phase.c_str(), cell(ours, &Measured::per_body_step, "%.3f").c_str(),
-                    cell(theirs, &Measured::per_body_step, "%.3f").c_str(),
-                    ours && theirs
-                        ? number(ours->per_body_step / theirs->per_body_step, "%.2f").c_str()
-                        : "-",
-                    cell(ours, &Measured::overlap, "%.1e").c_str(),
-                    cell(theirs, &Measured::overlap, "%.1e").c_str(),
-                    ours && theirs ? overlap_ratio(theirs->overlap, ours->overlap).c_str() : "-",
-                    cell(ours, &Measured::sweeps, "%.1f").c_str(),
-                    cell(ours, &Measured::islands, "%.1f").c_str());
             }
         }
     }
     std::printf("\n");
+    for (std::size_t k = 0; k < stops.size(); ++k) {
+        std::printf("[%zu] %s\n", k + 1, stops[k].c_str());
+    }
     for (const std::string& pile : piles) {
         for (const std::string& phase : phases) {
             const Measured* small = find(pile, 100, phase, "impulse");
             const Measured* large = find(pile, 10000, phase, "impulse");
-            if (small != nullptr && large != nullptr) {
+            if (small != nullptr && large != nullptr && small->stopped.empty() &&
+                large->stopped.empty()) {
                 std::printf("%s, %s: impulse per body-step at N = 10000 / at N = 100: %.2f "
                             "(target <= 2)\n",
                             pile.c_str(), phase.c_str(),
