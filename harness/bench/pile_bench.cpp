@@ -89,6 +89,7 @@ double deepest_now(const Scene& scene, const Simulator& simulator) {
 struct Stepper {
     const Scene& scene;
     Simulator& simulator;
+    double until; // the simulated time the progress bar counts to
     double t = 0.0;
     double deepest = 0.0;
 
@@ -103,7 +104,7 @@ struct Stepper {
             timed->PauseTiming();
         }
         deepest = std::max(deepest, deepest_now(scene, simulator));
-        note_simulated_time(t, scene.duration);
+        note_simulated_time(t, until);
         if (timed != nullptr) {
             timed->ResumeTiming();
         }
@@ -142,7 +143,7 @@ void settling_runs(benchmark::State& state, const std::string& path, bool box2d)
     for (auto _ : state) {
         state.PauseTiming();
         simulator = simulator_for(scene, box2d);
-        Stepper stepper{scene, *simulator};
+        Stepper stepper{scene, *simulator, settling_seconds};
         state.ResumeTiming();
         for (long long k = 0; k < steps; ++k) {
             stepper.step(&state, first);
@@ -184,7 +185,8 @@ SettledPile& settled_pile(const std::string& path, bool box2d) {
     if (!pile.simulator) {
         pile.scene = load_scene(path);
         pile.simulator = simulator_for(pile.scene, box2d);
-        pile.stepper = std::make_unique<Stepper>(Stepper{pile.scene, *pile.simulator});
+        pile.stepper =
+            std::make_unique<Stepper>(Stepper{pile.scene, *pile.simulator, settled_seconds});
         Progress progress(pile.scene.name + (box2d ? " box2d" : " impulse") + " to rest",
                           progress_wanted(false));
         const long long steps = steps_in(settled_seconds, pile.scene.dt);
