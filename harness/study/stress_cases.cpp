@@ -50,6 +50,9 @@ struct Setting {
     bool resting = false;
     std::string contacts = "single";
     std::string vertex_normal = "reference-face";
+    // Written only when set, as a user would: the seed's cases never name them.
+    std::string resting_method; // "time-stepping" for the pile rows
+    std::string stepping;       // "local" for the pile of 1000
 };
 
 // Through the scene format and its loader, so every case is a valid scene
@@ -61,6 +64,12 @@ Scene scene_of(const std::string& name, const std::string& description, const Se
     solver["resting"] = s.resting;
     solver["contacts"] = s.contacts;
     solver["vertex_normal"] = s.vertex_normal;
+    if (!s.resting_method.empty()) {
+        solver["resting_method"] = s.resting_method;
+    }
+    if (!s.stepping.empty()) {
+        solver["stepping"] = s.stepping;
+    }
     const Json document = {
         {"schema", scene_schema},        {"name", name},       {"description", description},
         {"gravity", pair_of(s.gravity)}, {"restitution", s.e}, {"dt", s.dt},
@@ -253,6 +262,125 @@ StressCase rest_case() {
         checks);
 }
 
+// ---------------------------------------------------------------- piles (issue 14)
+
+// What a column at rest may be off by per step: the solver stops once no point
+// would move by more than the contact tolerance d within the step, a velocity
+// of d / h, which changes a body's momentum by m d / h against its weight's
+// m |g| h. So the impulse through each contact is the weight above times h
+// within d / (|g| h^2) of it (3.7e-7 at 60 Hz, 4.2e-7 at 64 Hz).
+double support_rtol(const Scene& scene) {
+    return scene.solver.contact_tolerance / (length(scene.gravity) * scene.dt * scene.dt);
+}
+
+// The potential energy of the dynamic bodies above the height `ground`: the
+// energy scale of a pile at rest there (StressChecks::energy_scale_floor).
+double potential_above(const Scene& scene, double ground) {
+    double energy = 0.0;
+    for (const SceneBody& body : scene.bodies) {
+        energy +=
+            body.is_static ? 0.0 : body.mass * length(scene.gravity) * (body.position.y - ground);
+    }
+    return energy;
+}
+
+// 50 boxes 1.0 x 0.25 m (dyadic, so the faces touch exactly), masses 1 to 1.98
+// kg, stacked on the ground at rest for 3 s: nothing moves sideways, nothing
+// sinks (so nothing overlaps or passes through: no side rules), and each
+// contact carries exactly the weight above it.
+StressCase column_case() {
+    Setting s;
+    s.e = 0.5;
+    // 1/64 s rather than 1/60: the up-front tunnelling refusal (tunnelling.h)
+    // bounds closing speeds by a fall through the column's 12.5 m, and at 1/60
+    // s that bound just passes the boxes' 0.5 m thickness in a step.
+    s.dt = 1.0 / 64.0;
+    s.duration = 3.0;
+    s.resting = true;
+    s.resting_method = "time-stepping";
+    Json bodies = Json::array({wall("ground", {5.0, 0.5}, {0.0, -0.5})});
+    StressChecks checks;
+    SupportCheck support;
+    for (int i = 0; i < 50; ++i) {
+        const double y = 0.125 + 0.25 * static_cast<double>(i);
+        bodies.push_back(box("box-" + std::to_string(i), {0.5, 0.125},
+                             1.0 + 0.02 * static_cast<double>(i), {0.0, y}, 0.0));
+        support.column.push_back(i + 1);
+    }
+    checks.overlap_bound = 1e-6;
+    checks.drifts = {{{1.0, 0.0}, 1e-6}, {{0.0, 1.0}, 1e-6}};
+    StressCase c =
+        make_case("pile-column-50",
+                  "dense contact: a column of 50 boxes 1 x 0.25 m (1 to 1.98 kg) at rest "
+                  "on the ground for 3 s at dt = 1/64 s, time-stepping",
+                  s, std::move(bodies), checks);
+    support.rtol = support_rtol(c.scene);
+    c.checks.supports = {support};
+    c.checks.energy_scale_floor = potential_above(c.scene, 0.0);
+    return c;
+}
+
+// Two stacks on one ground, 1000 kg on 1 kg and 1 kg on 1000 kg (boxes 1 x
+// 0.5 m), at rest for 3 s: both hold, and the lower contact of each carries
+// 1001 |g| h per step, the upper one 1000 |g| h or |g| h.
+StressCase mass_stack_case() {
+    Setting s;
+    s.e = 0.5;
+    s.duration = 3.0;
+    s.resting = true;
+    s.resting_method = "time-stepping";
+    const Vec2 half{0.5, 0.25};
+    Json bodies = Json::array({wall("ground", {5.0, 0.5}, {0.0, -0.5}),
+                               box("light-under", half, 1.0, {-2.0, 0.25}, 0.0),
+                               box("heavy-on-top", half, 1e3, {-2.0, 0.75}, 0.0),
+                               box("heavy-under", half, 1e3, {2.0, 0.25}, 0.0),
+                               box("light-on-top", half, 1.0, {2.0, 0.75}, 0.0)});
+    StressChecks checks;
+    checks.sides = {{2, 1, {0.0, 1.0}}, {4, 3, {0.0, 1.0}}};
+    checks.overlap_bound = 1e-6;
+    checks.drifts = {{{1.0, 0.0}, 1e-6}, {{0.0, 1.0}, 1e-6}};
+    StressCase c =
+        make_case("pile-mass-1e3",
+                  "dense contact, mass ratio 1:1000: a 1000 kg box resting on a 1 kg box "
+                  "and a 1 kg box on a 1000 kg box, 3 s, time-stepping",
+                  s, std::move(bodies), checks);
+    const double rtol = support_rtol(c.scene);
+    c.checks.supports = {{{1, 2}, rtol}, {{3, 4}, rtol}};
+    c.checks.energy_scale_floor = potential_above(c.scene, 0.0);
+    return c;
+}
+
+// The scale scene pile-discs-1000's block: 1000 discs of radius 0.05 to 0.25 m
+// and density 1 to 4 kg/m^2 released at rest on a 0.55 m lattice into an open
+// box, e = 0.5, local stepping, 8 s. It must come to rest by 6 s (kinetic
+// energy below 1e-9 of what the fall released), never overlap beyond 1e-6 m,
+// and never gain energy.
+StressCase pile_discs_case() {
+    const std::string name = "pile-discs-1000";
+    const std::string description =
+        "dense contact at scale: 1000 discs of mixed sizes (1:5) and masses (1:100) poured into "
+        "an open box, e = 0.5, resting with local stepping (time-stepping), at rest by 6 s";
+    const Json solver = {{"integrator", "symplectic-euler"},
+                         {"toi", "secant"},
+                         {"resting", true},
+                         {"stepping", "local"}};
+    const Json pile = {{"count", 1000},     {"shape", "circle"}, {"size", {0.05, 0.25}},
+                       {"density", {1, 4}}, {"spacing", 0.55},   {"random_angles", false},
+                       {"seed", 1}};
+    const Json document = {{"schema", scene_schema},     {"name", name},
+                           {"description", description}, {"restitution", 0.5},
+                           {"dt", 1.0 / 60.0},           {"duration", 8.0},
+                           {"solver", solver},           {"pile", pile}};
+    StressCase c;
+    c.name = name;
+    c.description = description;
+    c.scene = parse_scene(document.dump(), "stress/" + name);
+    c.checks.overlap_bound = 1e-6;
+    c.checks.at_rest = AtRestCheck{6.0, 1e-9};
+    c.slow = true;
+    return c;
+}
+
 } // namespace
 
 std::vector<StressCase> stress_cases() {
@@ -293,6 +421,9 @@ std::vector<StressCase> stress_cases() {
     cases.push_back(tilt_case("tilt-simultaneous", "simultaneous"));
     cases.push_back(corner_case("reference-face"));
     cases.push_back(corner_case("bisector"));
+    cases.push_back(column_case());
+    cases.push_back(mass_stack_case());
+    cases.push_back(pile_discs_case());
     return cases;
 }
 

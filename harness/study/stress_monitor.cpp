@@ -2,7 +2,7 @@
 // every frame, its worst value kept, and judged against its bound and why.
 // The drop and head-on rows are docs/physics.md's exact answers
 // (stress_exact_answers.cpp).
-#include "manifold.h"
+#include "overlap.h"
 #include "stress.h"
 #include "stress_exact_answers.h"
 #include "stress_rows.h"
@@ -32,7 +32,9 @@ double ulp_at(double x) {
 
 StressMonitor::StressMonitor(const Scene& scene, StressChecks checks)
     : scene_(&scene), checks_(std::move(checks)), margins_(checks_.sides.size(), infinity),
-      margins_at_(checks_.sides.size()) {}
+      margins_at_(checks_.sides.size()), drift_worst_(checks_.drifts.size(), 0.0),
+      drift_at_(checks_.drifts.size()), support_worst_(checks_.supports.size(), 0.0),
+      support_at_(checks_.supports.size()) {}
 
 Totals StressMonitor::totals_of(const std::vector<BodyState>& states) const {
     Totals t;
@@ -71,15 +73,18 @@ void StressMonitor::observe(double t, const std::vector<BodyState>& states) {
         }
     }
     ++frames_;
-    last_ = states;
     // A frame with a NaN or an infinity says nothing about the geometry, so
     // the other checks skip it.
-    if (!observe_finite(t, states)) {
-        return;
+    if (observe_finite(t, states)) {
+        observe_penetration(t, states);
+        observe_sides(t, states);
+        observe_totals(t, states);
+        observe_drifts(t, states);
+        observe_rest(t, states);
+        observe_supports(t, states);
     }
-    observe_penetration(t, states);
-    observe_sides(t, states);
-    observe_totals(t, states);
+    last_ = states;
+    last_t_ = t;
 }
 
 // Finite: every value of every dynamic body.
@@ -112,22 +117,19 @@ bool StressMonitor::observe_finite(double t, const std::vector<BodyState>& state
     return finite;
 }
 
-// Interpenetration: the signed separation of every pair that can collide.
+// Interpenetration: the deepest pair of the frame, found through the overlap
+// grid (overlap.h) so a pile of 1000 bodies costs O(N) per frame, not O(N^2).
 void StressMonitor::observe_penetration(double t, const std::vector<BodyState>& states) {
     const std::vector<SceneBody>& bodies = scene_->bodies;
+    poses_.resize(states.size());
     for (std::size_t i = 0; i < states.size(); ++i) {
-        for (std::size_t k = i + 1; k < states.size(); ++k) {
-            if (bodies[i].is_static && bodies[k].is_static) {
-                continue;
-            }
-            const double depth = -separation(bodies[i].shape, transform_of(states[i]),
-                                             bodies[k].shape, transform_of(states[k]));
-            if (depth > deepest_) {
-                deepest_ = depth;
-                deepest_at_ = single_quoted(bodies[i].name) + " and " +
-                              single_quoted(bodies[k].name) + " at " + at_time(t);
-            }
-        }
+        poses_[i] = transform_of(states[i]);
+    }
+    const std::optional<Overlap> overlap = deepest_overlap(bodies, poses_);
+    if (overlap && overlap->depth > deepest_) {
+        deepest_ = overlap->depth;
+        deepest_at_ = single_quoted(bodies[overlap->a].name) + " and " +
+                      single_quoted(bodies[overlap->b].name) + " at " + at_time(t);
     }
 }
 
@@ -154,7 +156,7 @@ void StressMonitor::observe_totals(double t, const std::vector<BodyState>& state
         std::max(angular_momentum_drift_, std::abs(now.angular_momentum - start_.angular_momentum));
     momentum_scale_ = std::max(momentum_scale_, now.momentum_scale);
     angular_momentum_scale_ = std::max(angular_momentum_scale_, now.angular_momentum_scale);
-    energy_scale_ = std::max(energy_scale_, now.energy_scale);
+    energy_scale_ = std::max({energy_scale_, now.energy_scale, checks_.energy_scale_floor});
     const double change = now.energy - start_.energy;
     if (change > energy_gain_) {
         energy_gain_ = change;
@@ -163,6 +165,118 @@ void StressMonitor::observe_totals(double t, const std::vector<BodyState>& state
     if (std::abs(change) > energy_drift_) {
         energy_drift_ = std::abs(change);
         energy_drift_at_ = at_time(t);
+    }
+}
+
+// ---------------------------------------------------------------- pile rows
+
+void StressMonitor::observe_drifts(double t, const std::vector<BodyState>& states) {
+    const std::vector<SceneBody>& bodies = scene_->bodies;
+    for (std::size_t c = 0; c < checks_.drifts.size(); ++c) {
+        for (std::size_t i = 0; i < states.size(); ++i) {
+            if (bodies[i].is_static) {
+                continue;
+            }
+            const double drift =
+                std::abs(dot(states[i].position - start_positions_[i], checks_.drifts[c].axis));
+            if (drift > drift_worst_[c]) {
+                drift_worst_[c] = drift;
+                drift_at_[c] = single_quoted(bodies[i].name) + " at " + at_time(t);
+            }
+        }
+    }
+}
+
+// K(t) against what the fall released, K(0) + sum m g.(x - x0): the at-rest
+// expectation's measure (rest_expectations.cpp), here on the engine's states.
+void StressMonitor::observe_rest(double t, const std::vector<BodyState>& states) {
+    if (!checks_.at_rest) {
+        return;
+    }
+    const std::vector<SceneBody>& bodies = scene_->bodies;
+    double kinetic = 0.0;
+    double fallen = 0.0; // potential energy lost since t = 0
+    for (std::size_t i = 0; i < states.size(); ++i) {
+        if (bodies[i].is_static) {
+            continue;
+        }
+        const BodyState& s = states[i];
+        const double inertia = bodies[i].rotation ? bodies[i].inertia : 0.0;
+        kinetic += 0.5 * bodies[i].mass * dot(s.velocity, s.velocity) +
+                   0.5 * inertia * s.angular_velocity * s.angular_velocity;
+        fallen += bodies[i].mass * dot(scene_->gravity, s.position - start_positions_[i]);
+    }
+    if (frames_ == 1) {
+        start_kinetic_ = kinetic;
+    }
+    if (t < checks_.at_rest->after) {
+        return;
+    }
+    const double released = start_kinetic_ + fallen;
+    const double ratio = released > 0.0 ? kinetic / released : (kinetic > 0.0 ? infinity : 0.0);
+    if (ratio > rest_worst_ || rest_at_.empty()) {
+        rest_worst_ = std::max(rest_worst_, ratio);
+        rest_at_ = at_time(t);
+    }
+}
+
+// The impulse through the contact under body k in the step just taken: the
+// momentum bodies k and up gained along -g, less gravity's kick on them,
+// sum_{j >= k} m_j (dv_j . up + |g| h). Held at rest it is |g| h sum m_j.
+void StressMonitor::observe_supports(double t, const std::vector<BodyState>& states) {
+    if (frames_ < 2 || checks_.supports.empty()) {
+        return;
+    }
+    const double g = length(scene_->gravity);
+    const Vec2 up = g > 0.0 ? (-1.0 / g) * scene_->gravity : Vec2{0.0, 1.0};
+    const double h = t - last_t_;
+    for (std::size_t c = 0; c < checks_.supports.size(); ++c) {
+        const std::vector<int>& column = checks_.supports[c].column;
+        double measured = 0.0;
+        double weight = 0.0;
+        for (std::size_t k = column.size(); k-- > 0;) {
+            const auto j = static_cast<std::size_t>(column[k]);
+            const double m = scene_->bodies[j].mass;
+            measured += m * (dot(states[j].velocity - last_[j].velocity, up) + g * h);
+            weight += m * g * h;
+            const double error = std::abs(measured - weight) / weight;
+            if (error > support_worst_[c] || support_at_[c].empty()) {
+                support_worst_[c] = std::max(support_worst_[c], error);
+                support_at_[c] =
+                    "under " + single_quoted(scene_->bodies[j].name) + " at " + at_time(t);
+            }
+        }
+    }
+}
+
+void StressMonitor::add_pile_rows(std::vector<StressRow>& rows) const {
+    const std::vector<SceneBody>& bodies = scene_->bodies;
+    for (std::size_t c = 0; c < checks_.drifts.size(); ++c) {
+        const Vec2 axis = checks_.drifts[c].axis;
+        const std::string along = axis.y == 0.0 ? "x" : axis.x == 0.0 ? "y" : "the axis";
+        rows.push_back(judged("drift in " + along + " (m)", drift_worst_[c],
+                              checks_.drifts[c].bound, Bound::at_most,
+                              drift_at_[c].empty() ? "nothing moved" : "largest: " + drift_at_[c]));
+    }
+    if (checks_.at_rest) {
+        // A run that ended before `after` never showed it was at rest.
+        rows.push_back(judged(
+            "at rest after " + at_time(checks_.at_rest->after),
+            rest_at_.empty() ? infinity : rest_worst_, checks_.at_rest->rtol, Bound::at_most,
+            rest_at_.empty() ? "the run ended before " + at_time(checks_.at_rest->after)
+                             : "kinetic energy over the energy released, largest at " + rest_at_));
+    }
+    for (std::size_t c = 0; c < checks_.supports.size(); ++c) {
+        const std::vector<int>& column = checks_.supports[c].column;
+        const std::string top = column.empty()
+                                    ? std::string("?")
+                                    : bodies[static_cast<std::size_t>(column.back())].name;
+        rows.push_back(judged(
+            "support impulse under " + single_quoted(top) + "'s column (relative)",
+            support_worst_[c], checks_.supports[c].rtol, Bound::at_most,
+            support_at_[c].empty()
+                ? "no step taken"
+                : "impulse per step against the weight above times h, worst " + support_at_[c]));
     }
 }
 
@@ -176,6 +290,7 @@ std::vector<StressRow> StressMonitor::rows() const {
     std::vector<StressRow> rows = geometry_rows();
     const double budget = position_budget();
     add_conservation_rows(rows, budget);
+    add_pile_rows(rows);
     if (checks_.drop) {
         for (StressRow& row : drop_rows(*scene_, *checks_.drop, events_, budget)) {
             rows.push_back(std::move(row));
@@ -195,7 +310,8 @@ std::vector<StressRow> StressMonitor::geometry_rows() const {
     rows.push_back(
         judged("finite", non_finite_.empty() ? largest_ : std::nan(""), infinity, Bound::finite,
                non_finite_.empty() ? "largest magnitude of any state value" : non_finite_));
-    rows.push_back(judged("interpenetration (m)", deepest_, scene.solver.contact_tolerance,
+    rows.push_back(judged("interpenetration (m)", deepest_,
+                          checks_.overlap_bound.value_or(scene.solver.contact_tolerance),
                           Bound::at_most,
                           deepest_at_.empty() ? "no pair ever overlapped" : deepest_at_));
     for (std::size_t r = 0; r < checks_.sides.size(); ++r) {
