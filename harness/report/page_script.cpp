@@ -265,11 +265,14 @@ const char* page_script() {
     });
     d.runs.forEach(function (run, r) {
       var colour = r === 0 ? GOLD : NEW, upto = indexAt(run.t, t + 1e-12);
+      // A few bodies show their whole path; many (a gas) only the last half
+      // second of it, or the picture is spaghetti.
+      var from = d.bodies.length <= 4 ? 0 : indexAt(run.t, t - 0.5);
       g.strokeStyle = colour; g.globalAlpha = 0.45; g.lineWidth = r === 0 ? 3 : 1.2;
       d.bodies.forEach(function (b, j) {
         g.beginPath();
         var pen = false;
-        for (var i = 0; i <= upto; ++i) {
+        for (var i = from; i <= upto; ++i) {
           var x = run.pose[i][3 * j], y = run.pose[i][3 * j + 1];
           if (x === null || y === null) { pen = false; continue; }
           if (pen) { g.lineTo(X(x), Y(y)); } else { g.moveTo(X(x), Y(y)); }

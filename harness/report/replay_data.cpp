@@ -104,7 +104,7 @@ std::string first_json(const Divergence* first) {
 } // namespace
 
 std::string replay_json(const SceneCheck& check, std::size_t budget) {
-    if (!check.gold || !check.value) {
+    if (!check.gold || !check.value || check.gold->frames.empty() || check.value->frames.empty()) {
         return "";
     }
     const Scene* scene = check.scene ? &*check.scene : nullptr;

@@ -16,7 +16,7 @@ namespace impulse::harness {
 // page says so.
 inline constexpr std::size_t replay_frame_budget = 2000;
 
-// Empty when the check lacks a golden or a new run.
+// Empty when the check lacks a golden or a new run, or one has no frame.
 std::string replay_json(const SceneCheck& check, std::size_t budget = replay_frame_budget);
 
 } // namespace impulse::harness
