@@ -187,8 +187,6 @@ def main():
                              "(those that state a restitution); the first one is checked first")
     parser.add_argument("--window", default="%dx%d" % WINDOW, help="screenshot size, WxH")
     parser.add_argument("--screenshot", help="keep the screenshot at this path")
-    parser.add_argument("--at", default="", help="the page's anchor the screenshot starts at "
-                        "(scene-NAME), else the top")
     args = parser.parse_args()
     canonical = sorted(f[:-5] for f in os.listdir(os.path.join(args.source, "harness", "scenes"))
                        if f.endswith(".json"))
@@ -212,7 +210,7 @@ def main():
         shot = os.path.join(tmp, "shot.png")
         run(browser + ["--virtual-time-budget=1000", "--window-size=%d,%d" % window,
                        "--screenshot=" + shot,
-                       page + "?at=divergence" + ("#" + args.at if args.at else "")], expect=0)
+                       page + "?at=divergence"], expect=0)
         if not os.path.isfile(shot):
             fail("chromium wrote no screenshot")
         width, height, colours, red = png_facts(shot)
