@@ -4,6 +4,7 @@
 // budget, and data that cannot end the page's script element. The page in a
 // real browser is tests/browser/report_in_browser.py (CTest browser.report).
 #include "compare.h"
+#include "first_divergence.h"
 #include "html_report.h"
 #include "page_json.h"
 #include "replay_data.h"
@@ -13,6 +14,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -82,6 +84,26 @@ TEST_CASE("The report page puts failed scenes first and folds the passed ones", 
     CHECK(html.find("data-script-errors") != std::string::npos);
     CHECK(html.find("src=") == std::string::npos);
     CHECK(html.find("<link") == std::string::npos);
+}
+
+TEST_CASE("A failed scene's first divergence and its cause are said once, as every report says "
+          "them",
+          "[html-report]") {
+    SceneCheck check = one_ulp_check(40);
+    const std::optional<FirstDivergence> first = first_divergence_of(*check.comparison);
+    REQUIRE(first);
+    CHECK(first->divergence.column == "box.y");
+    // The gate's message is this sentence when the comparison is all that failed.
+    check.message = first_divergence_line(*check.comparison);
+    const std::string html = page_of({check});
+    const std::size_t cause =
+        html.find("<p class=\"cause\"><b>First divergence:</b> box.y at t = ");
+    REQUIRE(cause != std::string::npos);
+    CHECK(html.find(first->cause, cause) < html.find("</p>", cause));
+    CHECK(html.find("<p class=\"message\">") == std::string::npos);
+    // Another message (an expectation that failed too) is still shown.
+    check.message += "; expectation failed";
+    CHECK(page_of({check}).find("<p class=\"message\">") != std::string::npos);
 }
 
 TEST_CASE("A failed scene's replay data: golden and new, the first divergence, the channel "

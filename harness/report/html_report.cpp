@@ -4,6 +4,7 @@
 
 #include "check_outcome.h"
 #include "comparison_picture.h"
+#include "first_divergence.h"
 #include "markup.h"
 #include "motion_picture.h"
 #include "page_assets.h"
@@ -107,15 +108,18 @@ void section_text(std::string& out, const SceneCheck& check) {
     }
     out += seconds_text(check.seconds) + " s</p>\n";
     const std::string line = outcome_line(check);
-    if (check.status != Status::passed && !check.message.empty()) {
+    // A failed comparison's first divergence and its cause, once: the gate's
+    // message is the same sentence when the comparison is all that failed.
+    const bool divergence = check.status == Status::failed && check.comparison && !check.stale &&
+                            earliest_divergence(*check.comparison) != nullptr;
+    if (divergence) {
+        out += "<p class=\"cause\"><b>First divergence:</b> " + xml_escape(line) + "</p>\n";
+    }
+    const bool repeated = divergence && check.message == first_divergence_line(*check.comparison);
+    if (check.status != Status::passed && !check.message.empty() && !repeated) {
         out += "<p class=\"message\">" + xml_escape(check.message) + "</p>\n";
     } else if (!line.empty() && check.status != Status::failed) {
         out += "<p>" + xml_escape(line) + "</p>\n";
-    }
-    if (check.status == Status::failed && check.comparison && !check.stale) {
-        if (first_divergence(*check.comparison) != nullptr) {
-            out += "<p class=\"cause\"><b>First divergence:</b> " + xml_escape(line) + "</p>\n";
-        }
     }
 }
 

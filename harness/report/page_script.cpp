@@ -167,7 +167,7 @@ const char* page_script() {
     root.appendChild(this.canvas);
     var v = data.view, w = Math.max(v[2] - v[0], 1e-9), h = Math.max(v[3] - v[1], 1e-9);
     this.scale = Math.min(900 / w, 420 / h);
-    this.cw = Math.max(w * this.scale, 240); this.ch = Math.max(h * this.scale, 120);
+    this.cw = Math.max(w * this.scale, 420); this.ch = Math.max(h * this.scale, 120);
     var legend = el('p', 'legend');
     legend.innerHTML = '<span class="key gold">- - golden</span> <span class="key new">\u2014 new</span> ' +
       '\u25CB golden collision \u00B7 \u25CF new collision \u00B7 <span class="key diverge">| first divergence</span>';
@@ -228,7 +228,9 @@ const char* page_script() {
   Replay.prototype.step = function (k) { this.pause(); this.show(this.i + k); };
   Replay.prototype.jump = function () {
     this.pause();
-    this.show(indexAt(this.base.t, this.d.first.t + 1e-12));
+    // The first frame at or after it: where the runs are seen to differ.
+    var i = indexAt(this.base.t, this.d.first.t);
+    this.show(this.base.t[i] < this.d.first.t ? i + 1 : i);
   };
   Replay.prototype.pause = function () {
     if (this.timer !== null) { clearInterval(this.timer); this.timer = null; }
@@ -292,7 +294,7 @@ const char* page_script() {
     });
     if (d.first && t + 1e-12 >= d.first.t) {
       g.fillStyle = DIVERGE; g.font = 'bold 12px sans-serif'; g.textAlign = 'left';
-      g.fillText('diverged at t = ' + fmtT(d.first.t) + ' s (' + d.first.column + ')', 8, this.ch - 8);
+      g.fillText('diverged at t = ' + fmtT(d.first.t) + ' s', 8, this.ch - 8);
     }
     g.fillStyle = '#222'; g.font = '13px sans-serif'; g.textAlign = 'right';
     g.fillText('t = ' + fmtT(t) + ' s', this.cw - 8, 18);

@@ -1,7 +1,7 @@
 // A failed scene's data for the report page (replay_data.h).
 #include "replay_data.h"
 
-#include "comparison_picture.h"
+#include "first_divergence.h"
 #include "page_json.h"
 #include "time_series.h"
 #include "tracks.h"
@@ -110,8 +110,8 @@ std::string replay_json(const SceneCheck& check, std::size_t budget) {
     const Scene* scene = check.scene ? &*check.scene : nullptr;
     const Trajectory& gold = *check.gold;
     const Trajectory& value = *check.value;
-    const Divergence* first = check.comparison ? first_divergence(*check.comparison) : nullptr;
-    const bool frame_divergence = first != nullptr && first->column.rfind("events[", 0) != 0;
+    const Divergence* first = check.comparison ? earliest_divergence(*check.comparison) : nullptr;
+    const bool frame_divergence = first != nullptr && !is_event_divergence(*first);
     const std::size_t keep = frame_divergence ? first->frame : picture::npos;
 
     const std::vector<Track> tracks = picture::tracks_of(gold, scene);

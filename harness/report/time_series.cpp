@@ -1,8 +1,8 @@
 // The report page's plots over time (time_series.h).
 #include "time_series.h"
 
-#include "comparison_picture.h"
 #include "exact_answers.h"
+#include "first_divergence.h"
 #include "page_json.h"
 #include "tracks.h"
 #include "trajectory_columns.h"
@@ -13,10 +13,6 @@
 namespace impulse::harness {
 
 namespace {
-
-bool is_event_divergence(const Divergence& d) {
-    return d.column.rfind("events[", 0) == 0;
-}
 
 // The diverging frame columns, earliest first, then in column order.
 std::vector<const Divergence*> diverging_channels(const Trajectory& gold,
