@@ -3,8 +3,8 @@
 
 namespace impulse::harness {
 
-const char* page_style() {
-    return R"CSS(
+// A constant, not a function body: the text is long, the function is one line.
+constexpr const char* page_style_text = R"CSS(
 body { font-family: "DejaVu Sans", Helvetica, Arial, sans-serif; color: #222; margin: 2em auto;
        max-width: 1000px; padding: 0 1em; line-height: 1.45; }
 h1 { font-size: 1.6em; margin-bottom: 0.2em; }
@@ -64,6 +64,9 @@ canvas.world { border: 1px solid #ddd; display: block; max-width: 100%; }
 .plot canvas { border: 1px solid #eee; }
 .keys { color: #666; font-size: 0.85em; }
 )CSS";
+
+const char* page_style() {
+    return page_style_text;
 }
 
 } // namespace impulse::harness
