@@ -168,6 +168,35 @@ TEST_CASE("A long run is shown at most at the frame budget, keeping the divergen
     CHECK(has_divergence);
 }
 
+TEST_CASE("A run of many bodies gets fewer frames, so the page stays a few MB", "[html-report]") {
+    CHECK(replay_frames_for(1, replay_frame_budget) == replay_frame_budget);
+    // 1000 bodies: 3000 pose numbers a frame, so 600000 / 3000 = 200 frames.
+    CHECK(replay_frames_for(1000, replay_frame_budget) == replay_value_budget / 3000);
+    CHECK(replay_frames_for(1'000'000, replay_frame_budget) == replay_min_frames);
+
+    SceneCheck check;
+    check.name = "crowd";
+    Trajectory t;
+    t.columns = {"t"};
+    const std::size_t bodies = 1000, frames = 300;
+    for (std::size_t b = 0; b < bodies; ++b) {
+        for (const char* c : {".x", ".y", ".angle", ".vx", ".vy", ".omega"}) {
+            t.columns.push_back("b" + std::to_string(b) + c);
+        }
+    }
+    for (std::size_t k = 0; k < frames; ++k) {
+        std::vector<double> frame(t.columns.size(), 0.0);
+        frame[0] = 0.01 * static_cast<double>(k);
+        t.frames.push_back(frame);
+    }
+    check.gold = t;
+    check.value = t;
+    const nlohmann::json d = nlohmann::json::parse(replay_json(check));
+    CHECK(d["runs"][0]["count"] == frames);
+    CHECK(d["runs"][0]["t"].size() <= replay_value_budget / (3 * bodies) + 1);
+    CHECK(d["runs"][0]["pose"][0].size() == 3 * bodies);
+}
+
 TEST_CASE("Text in the page's data cannot end its script element", "[html-report]") {
     const std::string text = json_string("a</script><b>&\"\\\n");
     CHECK(text.find('<') == std::string::npos);

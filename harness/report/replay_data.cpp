@@ -103,6 +103,11 @@ std::string first_json(const Divergence* first) {
 
 } // namespace
 
+std::size_t replay_frames_for(std::size_t bodies, std::size_t budget) {
+    const std::size_t per_frame = 3 * std::max<std::size_t>(bodies, 1);
+    return std::min(budget, std::max(replay_min_frames, replay_value_budget / per_frame));
+}
+
 std::string replay_json(const SceneCheck& check, std::size_t budget) {
     if (!check.gold || !check.value || check.gold->frames.empty() || check.value->frames.empty()) {
         return "";
@@ -123,6 +128,7 @@ std::string replay_json(const SceneCheck& check, std::size_t budget) {
     motion.add(picture::motion_bounds(value, value_tracks));
     const picture::Box view = picture::framed(motion, scene);
 
+    budget = replay_frames_for(tracks.size(), budget);
     const std::vector<std::size_t> gold_frames = sampled_frames(gold.frames.size(), budget, keep);
     const std::vector<std::size_t> value_frames = sampled_frames(value.frames.size(), budget, keep);
     const std::size_t common = std::min(gold.frames.size(), value.frames.size());
