@@ -1,6 +1,7 @@
 // `impulse diff A B`: compare two trajectory files with the rules of `check`.
 #include "cli.h"
 #include "compare.h"
+#include "first_divergence.h"
 #include "trajectory.h"
 
 #include <optional>
@@ -117,7 +118,9 @@ int diff_verb(const std::vector<std::string>& args, std::ostream& out, std::ostr
         out << "within tolerance\n" << describe(comparison);
         return exit_ok;
     }
-    out << value_file << " differs from " << gold_file << ":\n" << describe(comparison);
+    out << value_file << " differs from " << gold_file << ":\n"
+        << first_divergence_line(comparison) << "\n"
+        << describe(comparison);
     return exit_failed;
 }
 

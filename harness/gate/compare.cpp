@@ -4,6 +4,7 @@
 #include "compare.h"
 
 #include "number_format.h"
+#include "scaled_difference.h"
 
 #include <algorithm>
 #include <charconv>
@@ -218,14 +219,11 @@ std::vector<std::string> structural_differences(const Trajectory& gold, const Tr
     return structural;
 }
 
-double relative_difference(double abs_diff, double gold) {
-    if (abs_diff == 0.0) {
-        return 0.0; // also for -0.0 against +0.0
+// The largest finite |value| among `values`: a channel's scale.
+void widen_scale(double& scale, double value) {
+    if (std::isfinite(value)) {
+        scale = std::max(scale, std::fabs(value));
     }
-    if (gold == 0.0) {
-        return std::numeric_limits<double>::infinity();
-    }
-    return abs_diff / std::fabs(gold);
 }
 
 // Compares one value and counts it in its channel. The maxima cover every
@@ -235,14 +233,14 @@ double relative_difference(double abs_diff, double gold) {
 // in tolerance mode when it is outside the channel's tolerance.
 std::optional<Divergence> compare_value(Comparison& result,
                                         const std::optional<Tolerances>& tolerances,
-                                        Channel channel, double gold, double value) {
+                                        Channel channel, double gold, double value, double scale) {
     Divergence d;
     d.channel = channel;
     d.gold = gold;
     d.value = value;
     d.abs_diff = std::fabs(value - gold);
-    d.rel_diff = relative_difference(d.abs_diff, gold);
-    d.ulp = ulp_distance(gold, value);
+    d.rel_diff = relative_at_scale(gold, value, scale);
+    d.ulp = ulp_at_scale(gold, value, scale);
 
     ChannelSummary& summary = result.channels[channel_index(channel)];
     ++summary.compared;
@@ -252,7 +250,13 @@ std::optional<Divergence> compare_value(Comparison& result,
 
     const bool same = same_bits(gold, value);
     result.identical = result.identical && same;
-    const bool fails = tolerances ? !within(*(*tolerances)[channel], gold, value) : !same;
+    // The ULP bound also holds at the channel's scale, the ULP the report
+    // shows; that count is never above the one within() takes.
+    const bool fails =
+        tolerances
+            ? !(within(*(*tolerances)[channel], gold, value) ||
+                (!std::isnan(gold) && !std::isnan(value) && d.ulp <= (*tolerances)[channel]->ulp))
+            : !same;
     if (!fails) {
         return std::nullopt;
     }
@@ -272,6 +276,12 @@ void compare_frames(const Trajectory& gold, const Trajectory& value,
         if (!vc || !channel) {
             continue; // reported as structural
         }
+        double scale = 0.0;
+        for (std::size_t k = 0; k < gold.frames.size(); ++k) {
+            if (gc < gold.frames[k].size()) {
+                widen_scale(scale, gold.frames[k][gc]);
+            }
+        }
         bool diverged = false;
         for (std::size_t k = 0; k < frames; ++k) {
             const std::vector<double>& g = gold.frames[k];
@@ -280,7 +290,7 @@ void compare_frames(const Trajectory& gold, const Trajectory& value,
                 continue; // a short frame, reported as structural
             }
             std::optional<Divergence> d =
-                compare_value(result, tolerances, *channel, g[gc], v[*vc]);
+                compare_value(result, tolerances, *channel, g[gc], v[*vc], scale);
             if (d && !diverged) {
                 diverged = true;
                 d->column = column;
@@ -318,6 +328,13 @@ std::array<double, 8> event_values(const TrajectoryEvent& e) {
 void compare_events(const Trajectory& gold, const Trajectory& value,
                     const std::optional<Tolerances>& tolerances, Comparison& result) {
     const std::size_t common = std::min(gold.events.size(), value.events.size());
+    std::array<double, event_fields.size()> scales{};
+    for (const TrajectoryEvent& e : gold.events) {
+        const std::array<double, 8> values = event_values(e);
+        for (std::size_t f = 0; f < scales.size(); ++f) {
+            widen_scale(scales[f], values[f]);
+        }
+    }
     bool recorded = false; // only the first divergent event is listed
     for (std::size_t k = 0; k < common; ++k) {
         const TrajectoryEvent& ge = gold.events[k];
@@ -329,7 +346,7 @@ void compare_events(const Trajectory& gold, const Trajectory& value,
         const std::array<double, 8> v = event_values(ve);
         for (std::size_t f = 0; f < event_fields.size(); ++f) {
             std::optional<Divergence> d =
-                compare_value(result, tolerances, event_fields[f].channel, g[f], v[f]);
+                compare_value(result, tolerances, event_fields[f].channel, g[f], v[f], scales[f]);
             if (d && !recorded) {
                 recorded = true;
                 d->column = "events[" + std::to_string(k) + "]." + event_fields[f].name;

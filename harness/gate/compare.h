@@ -20,7 +20,10 @@ struct Divergence {
     double gold = 0.0;
     double value = 0.0;
     double abs_diff = 0.0;
-    double rel_diff = 0.0; // abs_diff / |gold|, infinite when gold is 0 and they differ
+    // Both at the scale of the channel: abs_diff / max(|gold|, scale) and
+    // ULPs at max(|gold|, |new|, scale) (scaled_difference.h), where scale
+    // is the golden's largest |value| in this column or event field.
+    double rel_diff = 0.0;
     std::uint64_t ulp = 0;
 };
 

@@ -2,6 +2,7 @@
 
 #include "atomic_file.h"
 #include "engine.h"
+#include "first_divergence.h"
 #include "golden_settings.h"
 #include "input_error.h"
 #include "number_format.h"
@@ -99,30 +100,6 @@ Tolerances tolerances_for(const Scene& scene, const CheckOptions& options) {
         t = parse_tolerance_option("--ulp", *options.ulp, t);
     }
     return t;
-}
-
-std::string first_divergence_line(const Comparison& comparison) {
-    if (!comparison.structural.empty()) {
-        return comparison.structural.front();
-    }
-    if (comparison.first_divergences.empty()) {
-        return "the trajectories differ";
-    }
-    // The earliest divergent frame is where the motion first parted; an event
-    // field is named only when no frame differs.
-    const Divergence* first = nullptr;
-    for (const Divergence& d : comparison.first_divergences) {
-        const bool is_event = d.column.rfind("events[", 0) == 0;
-        if (!is_event && (first == nullptr || d.t < first->t)) {
-            first = &d;
-        }
-    }
-    if (first == nullptr) {
-        first = &comparison.first_divergences.front();
-    }
-    return "first divergence: " + first->column + " at t = " + format_double(first->t) +
-           " s (golden " + format_double(first->gold) + ", new " + format_double(first->value) +
-           ")";
 }
 
 std::string failed_expectations(const std::vector<ExpectationResult>& results, int& count) {

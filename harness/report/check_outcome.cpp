@@ -1,13 +1,14 @@
 // A scene's check in words (check_outcome.h).
 #include "check_outcome.h"
 
-#include "comparison_picture.h"
+#include "first_divergence.h"
 #include "text.h"
 
 #include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <iterator>
+#include <optional>
 #include <system_error>
 
 namespace impulse::harness {
@@ -115,8 +116,8 @@ std::string failure_kind(const SceneCheck& check) {
 // The one-line description of a scene's outcome for tables.
 std::string outcome_line(const SceneCheck& check) {
     if (check.status == Status::failed && !check.stale && check.comparison) {
-        if (const Divergence* first = first_divergence(*check.comparison)) {
-            return divergence_text(*first);
+        if (const std::optional<FirstDivergence> first = first_divergence_of(*check.comparison)) {
+            return divergence_text(first->divergence) + ": " + first->cause;
         }
     }
     if (!check.message.empty()) {

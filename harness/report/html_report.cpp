@@ -4,8 +4,11 @@
 
 #include "check_outcome.h"
 #include "comparison_picture.h"
+#include "first_divergence.h"
 #include "markup.h"
 #include "motion_picture.h"
+#include "page_assets.h"
+#include "replay_data.h"
 #include "text.h"
 
 #include <cstddef>
@@ -91,47 +94,9 @@ std::string picture_of(const SceneCheck& check) {
     return scene != nullptr ? render_svg(*scene, *check.value) : render_svg(*check.value);
 }
 
-constexpr const char* css = R"(
-body { font-family: "DejaVu Sans", Helvetica, Arial, sans-serif; color: #222; margin: 2em auto;
-       max-width: 1000px; padding: 0 1em; line-height: 1.45; }
-h1 { font-size: 1.6em; margin-bottom: 0.2em; }
-h2 { font-size: 1.25em; margin: 0 0 0.4em 0; }
-.verdict { font-size: 1.1em; font-weight: bold; padding: 0.5em 0.8em; border-radius: 6px; }
-.verdict.passed { background: #e8f5e9; color: #1b5e20; }
-.verdict.failed { background: #fdecea; color: #8e1b10; }
-table { border-collapse: collapse; width: 100%; margin: 1em 0 2em 0; font-size: 0.92em; }
-th, td { text-align: left; padding: 0.35em 0.6em; border-bottom: 1px solid #e3e3e3;
-         vertical-align: top; }
-th { background: #f5f5f5; }
-td.time { text-align: right; white-space: nowrap; font-variant-numeric: tabular-nums; }
-td.detail { word-break: break-word; }
-.badge { display: inline-block; font-size: 0.8em; padding: 0.1em 0.6em; border-radius: 1em;
-         font-weight: bold; vertical-align: middle; }
-.badge.passed { background: #e8f5e9; color: #1b5e20; }
-.badge.failed { background: #fdecea; color: #b71c1c; }
-.badge.error { background: #fff3e0; color: #e65100; }
-section { border: 1px solid #e3e3e3; border-left-width: 6px; border-radius: 6px; padding: 1em 1.2em;
-          margin: 1.2em 0; }
-section.passed { border-left-color: #43a047; }
-section.failed { border-left-color: #e53935; }
-section.error { border-left-color: #fb8c00; }
-.files { color: #666; font-size: 0.88em; margin: 0.2em 0 0.6em 0; }
-.files code { color: #333; }
-.message { font-weight: bold; }
-pre { background: #f7f7f7; border: 1px solid #e6e6e6; border-radius: 4px; padding: 0.8em;
-      overflow-x: auto; font-size: 0.85em; line-height: 1.35; }
-ul.expectations { padding-left: 1.2em; font-size: 0.92em; }
-li.fail { color: #b71c1c; }
-figure { margin: 1em 0 0 0; overflow-x: auto; }
-figure svg { max-width: 100%; height: auto; }
-figcaption { color: #666; font-size: 0.85em; }
-a { color: #1565c0; }
-)";
-
-void html_section(std::string& out, const SceneCheck& check, const std::string& stem,
-                  const std::string& picture, bool picture_file) {
+// The scene's heading, files, message, details and expectations.
+void section_text(std::string& out, const SceneCheck& check) {
     const std::string status = status_word(check.status);
-    out += "<section id=\"scene-" + stem + "\" class=\"" + status + "\">\n";
     out += "<h2>" + xml_escape(display_name(check)) + " <span class=\"badge " + status + "\">" +
            status + "</span></h2>\n";
     out += "<p class=\"files\">";
@@ -143,55 +108,117 @@ void html_section(std::string& out, const SceneCheck& check, const std::string& 
     }
     out += seconds_text(check.seconds) + " s</p>\n";
     const std::string line = outcome_line(check);
-    if (check.status != Status::passed && !check.message.empty()) {
+    // A failed comparison's first divergence and its cause, once: the gate's
+    // message is the same sentence when the comparison is all that failed.
+    const bool divergence = check.status == Status::failed && check.comparison && !check.stale &&
+                            earliest_divergence(*check.comparison) != nullptr;
+    if (divergence) {
+        out += "<p class=\"cause\"><b>First divergence:</b> " + xml_escape(line) + "</p>\n";
+    }
+    const bool repeated = divergence && check.message == first_divergence_line(*check.comparison);
+    if (check.status != Status::passed && !check.message.empty() && !repeated) {
         out += "<p class=\"message\">" + xml_escape(check.message) + "</p>\n";
-    } else if (!line.empty()) {
+    } else if (!line.empty() && check.status != Status::failed) {
         out += "<p>" + xml_escape(line) + "</p>\n";
+    }
+}
+
+void expectations_list(std::string& out, const SceneCheck& check) {
+    if (check.expectations.empty()) {
+        return;
+    }
+    out += "<ul class=\"expectations\">\n";
+    for (const ExpectationResult& e : check.expectations) {
+        out += std::string("<li class=\"") + (e.passed ? "pass" : "fail") + "\">" +
+               (e.passed ? "&#10003; " : "&#10007; ") + xml_escape(e.what) + ": expected " +
+               xml_escape(sentence_number(e.expected)) + ", got " +
+               xml_escape(sentence_number(e.actual));
+        if (!e.detail.empty()) {
+            out += " &#8212; " + xml_escape(e.detail);
+        }
+        out += "</li>\n";
+    }
+    out += "</ul>\n";
+}
+
+// The replay's mount point and its data, which the page's script reads.
+void replay_block(std::string& out, const SceneCheck& check, const std::string& stem) {
+    const std::string data = replay_json(check);
+    if (data.empty()) {
+        return;
+    }
+    out += "<div class=\"replay\" data-source=\"data-" + stem + "\"></div>\n";
+    out += "<script type=\"application/json\" id=\"data-" + stem + "\">" + data + "</script>\n";
+}
+
+void html_section(std::string& out, const SceneCheck& check, const std::string& stem,
+                  const std::string& picture, bool picture_file) {
+    const bool folded = check.status == Status::passed;
+    if (folded) {
+        // Passed scenes are folded: what a reviewer opens the page for is above them.
+        out += "<details class=\"scene\"><summary>" + xml_escape(display_name(check)) +
+               " <span class=\"badge passed\">passed</span> " + xml_escape(outcome_line(check)) +
+               "</summary>\n";
+    }
+    out += "<section id=\"scene-" + stem + "\" class=\"" + status_word(check.status) + "\">\n";
+    section_text(out, check);
+    if (check.status == Status::failed) {
+        replay_block(out, check, stem);
     }
     if (!check.details.empty()) {
         out += "<pre>" + xml_escape(check.details) + "</pre>\n";
     }
-    if (!check.expectations.empty()) {
-        out += "<ul class=\"expectations\">\n";
-        for (const ExpectationResult& e : check.expectations) {
-            out += std::string("<li class=\"") + (e.passed ? "pass" : "fail") + "\">" +
-                   (e.passed ? "&#10003; " : "&#10007; ") + xml_escape(e.what) + ": expected " +
-                   xml_escape(sentence_number(e.expected)) + ", got " +
-                   xml_escape(sentence_number(e.actual));
-            if (!e.detail.empty()) {
-                out += " &#8212; " + xml_escape(e.detail);
-            }
-            out += "</li>\n";
-        }
-        out += "</ul>\n";
-    }
+    expectations_list(out, check);
     if (!picture.empty()) {
+        const bool fold_picture = check.status == Status::failed && check.gold && check.value;
+        out += fold_picture ? "<details><summary>The static picture</summary>\n" : "";
         out += "<figure>\n" + picture;
         if (picture_file) {
             out += "<figcaption>Also in <a href=\"" + stem + ".svg\">" + stem +
                    ".svg</a>.</figcaption>\n";
         }
         out += "</figure>\n";
+        out += fold_picture ? "</details>\n" : "";
     }
     out += "</section>\n";
+    out += folded ? "</details>\n" : "";
+}
+
+// Failed scenes first, then errors, skipped and passed ones, each in the
+// order checked: the page opens on what needs looking at.
+std::vector<std::size_t> page_order(const std::vector<SceneCheck>& checks) {
+    std::vector<std::size_t> order;
+    for (const Status status : {Status::failed, Status::error, Status::skipped, Status::passed}) {
+        for (std::size_t i = 0; i < checks.size(); ++i) {
+            if (checks[i].status == status) {
+                order.push_back(i);
+            }
+        }
+    }
+    return order;
 }
 
 // The page's head, the verdict and the table of scenes.
-std::string html_head(const std::vector<SceneCheck>& checks,
-                      const std::vector<std::string>& stems) {
+std::string html_head(const std::vector<SceneCheck>& checks, const std::vector<std::string>& stems,
+                      const std::vector<std::size_t>& order) {
     const CheckCounts c = count_checks(checks);
     const bool all_passed = c.failed == 0 && c.errors == 0;
     std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
     html += "<title>impulse check: " + xml_escape(verdict_counts(c)) + "</title>\n";
-    html += "<style>" + std::string(css) + "</style>\n</head>\n<body>\n";
+    html += "<script>" + std::string(page_error_hook()) + "</script>\n";
+    html += "<style>" + std::string(page_style()) + "</style>\n</head>\n<body>\n";
     html += "<h1>impulse check</h1>\n";
     html += std::string("<p class=\"verdict ") + (all_passed ? "passed" : "failed") + "\">" +
             (all_passed ? "&#10004; " : "&#10008; ") + xml_escape(verdict_counts(c)) + " (" +
             seconds_text(c.seconds) + " s)</p>\n";
+    if (c.failed > 0) {
+        html += "<p class=\"keys\">Each failed scene has a replay: golden (amber, dashed) and new "
+                "(blue) overlaid. Space plays or pauses, the arrow keys step a frame.</p>\n";
+    }
     if (!checks.empty()) {
         html += "<table>\n<tr><th>scene</th><th>result</th><th>first divergence or "
                 "message</th><th>time</th></tr>\n";
-        for (std::size_t i = 0; i < checks.size(); ++i) {
+        for (const std::size_t i : order) {
             const std::string status = status_word(checks[i].status);
             html += "<tr><td><a href=\"#scene-" + stems[i] + "\">" +
                     xml_escape(display_name(checks[i])) + "</a></td><td><span class=\"badge " +
@@ -210,16 +237,20 @@ std::vector<std::pair<std::string, std::string>>
 html_report_files(const std::vector<SceneCheck>& checks) {
     std::vector<std::pair<std::string, std::string>> files;
     const std::vector<std::string> stems = file_stems(checks);
-    std::string html = html_head(checks, stems);
+    const std::vector<std::size_t> order = page_order(checks);
+    std::string html = html_head(checks, stems, order);
+    std::vector<std::string> pictures;
     for (std::size_t i = 0; i < checks.size(); ++i) {
-        const std::string picture = picture_of(checks[i]);
-        const bool picture_file = !picture.empty() && checks[i].status == Status::failed;
-        if (picture_file) {
-            files.emplace_back(stems[i] + ".svg", picture);
+        pictures.push_back(picture_of(checks[i]));
+        if (!pictures[i].empty() && checks[i].status == Status::failed) {
+            files.emplace_back(stems[i] + ".svg", pictures[i]);
         }
-        html_section(html, checks[i], stems[i], picture, picture_file);
     }
-    html += "</body>\n</html>\n";
+    for (const std::size_t i : order) {
+        html_section(html, checks[i], stems[i], pictures[i],
+                     !pictures[i].empty() && checks[i].status == Status::failed);
+    }
+    html += "<script>" + std::string(page_script()) + "</script>\n</body>\n</html>\n";
     files.emplace_back("index.html", html);
     return files;
 }
