@@ -34,7 +34,8 @@ struct Islands {
 struct IslandScratch {
     std::vector<int> parent; // union-find over bodies, all -1 between calls
     std::vector<int> touched;
-    std::vector<int> island_of;
+    std::vector<int> island_of; // per body, -1 between calls
+    std::vector<int> cursor;    // per island: the next free slot while placing
 };
 
 // Deterministic: islands are ordered by their smallest body index. Cost is

@@ -29,12 +29,24 @@ struct PgsResult {
 
 // Scratch kept between calls: per-body entries sized to the world once, reset
 // only where a call touched them, so a call costs O(its island).
+// One point's row of J and its column of M^-1 J^T, with the bodies' slots in
+// dv. Slot 0 stands for every static body: its k and r are zero, so it stays 0.
+struct PgsRow {
+    int slot_a = 0;
+    int slot_b = 0;
+    double nx = 0.0, ny = 0.0, rn_a = 0.0, rn_b = 0.0; // J_i = (n, rn_a | -n, -rn_b)
+    double ka_x = 0.0, ka_y = 0.0, ra = 0.0;           // A's velocity change per unit lambda_i
+    double kb_x = 0.0, kb_y = 0.0, rb = 0.0;           // B's, with its minus sign
+};
+
 struct PgsScratch {
     std::vector<int> local_of_body; // -1 between calls
-    std::vector<double> dv_x;
+    std::vector<double> dv_x;       // per slot: the velocity change M^-1 J^T lambda
     std::vector<double> dv_y;
     std::vector<double> dw;
-    std::vector<double> diagonal;
+    std::vector<double> diagonal; // per point: A_ii, the bits delassus() gives
+    std::vector<int> bodies;      // the world index of each slot past 0
+    std::vector<PgsRow> rows;     // per point
 };
 
 // points' a and b are world body indices (their `pair` is not used); q has one

@@ -1,11 +1,328 @@
 #include "time_stepping.h"
 
+#include "contact_candidates.h"
+#include "contact_resting.h"
+#include "energy_guard.h"
+#include "integrator.h"
+#include "island_lcp.h"
+#include "overlap_guard.h"
+#include "restitution.h"
+#include "time_stepping_scratch.h"
+
+#include <cmath>
+
 namespace impulse {
 
-std::optional<StepError> step_time_stepping(World&, double t0, double,
-                                            std::vector<CollisionEvent>&) {
-    // interface only: engine/time_stepping.cpp is written by its owner
-    return StepError{StepFailure::contact_problem_unsolved, t0, -1, -1};
+TimeSteppingScratch& TimeSteppingScratchSlot::get() {
+    if (!scratch_) {
+        scratch_ = {new TimeSteppingScratch, [](TimeSteppingScratch* p) { delete p; }};
+    }
+    return *scratch_;
+}
+
+namespace {
+
+// Last step's holding impulses for this step's points: both lists are in
+// (a, b, k) order, so one merge walk finds them.
+void look_up_warm_start(const World& world, TimeSteppingScratch& s) {
+    s.warm.assign(s.points.size(), 0.0);
+    std::size_t w = 0;
+    const std::vector<WarmImpulse>& old = world.warm_impulses;
+    for (std::size_t i = 0; i < s.points.size() && w < old.size(); ++i) {
+        const ContactPoint& p = s.points[i];
+        const int k = s.feature[i];
+        const auto before = [&](const WarmImpulse& o) {
+            return o.a != p.a ? o.a < p.a : o.b != p.b ? o.b < p.b : o.k < k;
+        };
+        while (w < old.size() && before(old[w])) {
+            ++w;
+        }
+        if (w < old.size() && old[w].a == p.a && old[w].b == p.b && old[w].k == k) {
+            s.warm[i] = old[w].impulse;
+        }
+    }
+}
+
+void keep_warm_start(World& world, const TimeSteppingScratch& s) {
+    world.warm_impulses.clear();
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+        if (s.held[i] > 0.0) {
+            const ContactPoint& p = s.points[i];
+            world.warm_impulses.push_back({p.a, p.b, s.feature[i], s.held[i]});
+        }
+    }
+}
+
+void apply_impulses(World& world, const IslandProblem& problem) {
+    for (std::size_t i = 0; i < problem.points.size(); ++i) {
+        if (problem.lambda[i] > 0.0) {
+            const ContactPoint& p = problem.points[i];
+            apply_impulse(world.bodies[static_cast<std::size_t>(p.a)],
+                          world.bodies[static_cast<std::size_t>(p.b)], p.contact.point,
+                          p.contact.normal, problem.lambda[i]);
+        }
+    }
+}
+
+bool any_positive(const std::vector<double>& values) {
+    for (const double v : values) {
+        if (v > 0.0) {
+            return true;
+        }
+    }
+    return false;
+}
+
+StepError unsolved(const IslandProblem& problem, double t0) {
+    const ContactPoint& named = problem.points.front();
+    return {StepFailure::contact_problem_unsolved, t0, named.a, named.b};
+}
+
+class TimeStep {
+  public:
+    TimeStep(World& world, double t0, double h, std::vector<CollisionEvent>& events)
+        : world_(world), s_(world.ts.get()), t0_(t0), h_(h), events_(events),
+          d_(world.solver.contact_tolerance), v_rest_(rest_speed(world)) {}
+
+    std::optional<StepError> run();
+
+  private:
+    // Retries of a step whose impacts carried a body beyond its reach.
+    static constexpr int max_reach_retries = 2;
+
+    void start();
+    std::optional<StepError> solve_islands();
+    bool outran_reach();
+    std::optional<StepError> island(int i);
+    bool impacts(int first, int last, bool& pushed);
+    bool hold(int first, int last, bool& pushed);
+    void restore();
+
+    World& world_;
+    TimeSteppingScratch& s_;
+    double t0_;
+    double h_;
+    std::vector<CollisionEvent>& events_;
+    double d_;
+    double v_rest_;
+};
+
+// x_k and v_k of every body, and free flight by the scene's integrator.
+void TimeStep::start() {
+    const std::size_t n = world_.bodies.size();
+    s_.start.resize(n);
+    s_.free_end.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const Body& body = world_.bodies[i];
+        s_.start[i] = body.state;
+        if (body.is_static()) {
+            s_.free_end[i] = body.state;
+        } else {
+            ++world_.work.body_advances;
+            s_.free_end[i] =
+                advance(world_.solver.integrator, body.state, world_.gravity, body.rotates(), h_);
+        }
+    }
+}
+
+void TimeStep::restore() {
+    for (std::size_t i = 0; i < world_.bodies.size(); ++i) {
+        world_.bodies[i].state = s_.start[i];
+    }
+}
+
+std::optional<StepError> TimeStep::run() {
+    ++world_.work.steps;
+    ++world_.work.time_stepping_steps;
+    const std::size_t events_at_start = events_.size();
+    start();
+    s_.reach_floor.assign(world_.bodies.size(), 0.0);
+    for (int attempt = 0;; ++attempt) {
+        if (std::optional<StepError> error = solve_islands()) {
+            restore();
+            events_.resize(events_at_start);
+            return error;
+        }
+        if (attempt == max_reach_retries || !outran_reach()) {
+            break;
+        }
+        restore();
+        events_.resize(events_at_start);
+    }
+    guard_overlaps(world_, h_, s_);
+    guard_energy(world_, s_);
+    keep_warm_start(world_, s_);
+    return std::nullopt;
+}
+
+// A body an impact sent further than its reach may have met a body it had no
+// candidate point with: the step is taken again with its reach doubled past
+// that distance, so every pair that can touch within the step is held.
+bool TimeStep::outran_reach() {
+    bool outran = false;
+    for (const int i : s_.islands.bodies) {
+        const std::size_t b = static_cast<std::size_t>(i);
+        const BodyState& now = world_.bodies[b].state;
+        const double moved =
+            length(now.position - s_.start[b].position) +
+            rotation_radius(world_.bodies[b].shape) * std::abs(now.angle - s_.start[b].angle);
+        if (moved > s_.reach[b]) {
+            s_.reach_floor[b] = 2.0 * moved;
+            outran = true;
+        }
+    }
+    return outran;
+}
+
+std::optional<StepError> TimeStep::solve_islands() {
+    find_contact_candidates(world_, h_, s_);
+    look_up_warm_start(world_, s_);
+    s_.held.assign(s_.points.size(), 0.0);
+    find_islands(world_.bodies, s_.links, s_.islands, s_.island_scratch);
+
+    const std::size_t n = world_.bodies.size();
+    s_.in_island.assign(n, 0);
+    for (const int b : s_.islands.bodies) {
+        s_.in_island[static_cast<std::size_t>(b)] = 1;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        if (s_.in_island[i] == 0) {
+            world_.bodies[i].state = s_.free_end[i]; // exact free flight
+        }
+    }
+    s_.island_pushed.assign(static_cast<std::size_t>(s_.islands.count()), 0);
+    for (int i = 0; i < s_.islands.count(); ++i) {
+        if (std::optional<StepError> error = island(i)) {
+            return error;
+        }
+    }
+    return std::nullopt;
+}
+
+std::optional<StepError> TimeStep::island(int i) {
+    const int first = s_.islands.link_offsets[static_cast<std::size_t>(i)];
+    const int last = s_.islands.link_offsets[static_cast<std::size_t>(i) + 1];
+    ++world_.work.islands;
+    world_.work.island_points += last - first;
+    const int b0 = s_.islands.body_offsets[static_cast<std::size_t>(i)];
+    const int b1 = s_.islands.body_offsets[static_cast<std::size_t>(i) + 1];
+    bool pushed = false;
+    if (!impacts(first, last, pushed)) {
+        return unsolved(s_.problem, t0_);
+    }
+    for (int k = b0; k < b1; ++k) { // gravity's kick, v' + h M^-1 f
+        BodyState& state =
+            world_.bodies[static_cast<std::size_t>(s_.islands.bodies[static_cast<std::size_t>(k)])]
+                .state;
+        state.velocity += h_ * world_.gravity;
+    }
+    if (!hold(first, last, pushed)) {
+        return unsolved(s_.problem, t0_);
+    }
+    s_.island_pushed[static_cast<std::size_t>(i)] = pushed ? 1 : 0;
+    for (int k = b0; k < b1; ++k) {
+        const std::size_t b =
+            static_cast<std::size_t>(s_.islands.bodies[static_cast<std::size_t>(k)]);
+        BodyState& state = world_.bodies[b].state;
+        if (!pushed) {
+            state = s_.free_end[b]; // no contact acted: the integrator's own flight
+            continue;
+        }
+        // Semi-implicit: the new velocity carries the body over the step.
+        state.position = s_.start[b].position + h_ * state.velocity;
+        if (world_.bodies[b].rotates()) {
+            state.angle = s_.start[b].angle + h_ * state.angular_velocity;
+        }
+    }
+    return std::nullopt;
+}
+
+// Phase 1, Newton's law at the step's start: only when some point approaches
+// faster than v_rest and will touch within the step.
+bool TimeStep::impacts(int first, int last, bool& pushed) {
+    IslandProblem& p = s_.problem;
+    p.rows.clear();
+    bool any_impact = false;
+    for (int l = first; l < last; ++l) {
+        const int r = s_.islands.links_of[static_cast<std::size_t>(l)];
+        const ContactPoint& point = s_.points[static_cast<std::size_t>(r)];
+        const double gap = point.contact.separation;
+        const bool impact =
+            point.vn < -v_rest_ &&
+            gap + h_ * (point.vn + h_ * gravity_normal_acceleration(world_, point)) <= d_;
+        any_impact = any_impact || impact;
+        if (impact || (gap <= d_ && point.vn <= 0.0)) {
+            p.rows.push_back(r);
+        }
+    }
+    if (!any_impact) {
+        return true;
+    }
+    p.points.clear();
+    p.q.clear();
+    for (const int r : p.rows) {
+        const ContactPoint& point = s_.points[static_cast<std::size_t>(r)];
+        p.points.push_back(point);
+        const double e = point.vn < -v_rest_ ? world_.restitution : 0.0;
+        p.q.push_back((1.0 + e) * point.vn);
+    }
+    p.lambda.assign(p.points.size(), 0.0);
+    if (!solve_island(world_, p, d_ / h_).solved) {
+        return false;
+    }
+    apply_impulses(world_, p);
+    for (std::size_t i = 0; i < p.points.size(); ++i) {
+        if (p.lambda[i] > 0.0) {
+            pushed = true;
+            const ContactPoint& point = p.points[i];
+            const double vn_after =
+                relative_normal_velocity(world_.bodies[static_cast<std::size_t>(point.a)],
+                                         world_.bodies[static_cast<std::size_t>(point.b)],
+                                         point.contact.point, point.contact.normal);
+            events_.push_back({t0_, point.a, point.b, point.contact.point, point.contact.normal,
+                               p.lambda[i], point.vn, vn_after});
+        }
+    }
+    return true;
+}
+
+// Phase 2, holding: after gravity's kick no point may close more than its gap
+// within the step, w = A lambda + u~ + max(g, 0) / h >= 0 (the velocities
+// already carry the kick).
+bool TimeStep::hold(int first, int last, bool& pushed) {
+    IslandProblem& p = s_.problem;
+    p.rows.clear();
+    p.points.clear();
+    p.q.clear();
+    p.lambda.clear();
+    for (int l = first; l < last; ++l) {
+        const int r = s_.islands.links_of[static_cast<std::size_t>(l)];
+        p.rows.push_back(r);
+        const ContactPoint& point = s_.points[static_cast<std::size_t>(r)];
+        p.points.push_back(point);
+        const double u = relative_normal_velocity(world_.bodies[static_cast<std::size_t>(point.a)],
+                                                  world_.bodies[static_cast<std::size_t>(point.b)],
+                                                  point.contact.point, point.contact.normal);
+        const double gap = point.contact.separation;
+        p.q.push_back(u + (gap > 0.0 ? gap : 0.0) / h_);
+        p.lambda.push_back(s_.warm[static_cast<std::size_t>(r)]);
+    }
+    if (!solve_island(world_, p, d_ / h_).solved) {
+        return false;
+    }
+    apply_impulses(world_, p);
+    for (std::size_t i = 0; i < p.rows.size(); ++i) {
+        s_.held[static_cast<std::size_t>(p.rows[i])] = p.lambda[i];
+    }
+    pushed = pushed || any_positive(p.lambda);
+    return true;
+}
+
+} // namespace
+
+std::optional<StepError> step_time_stepping(World& world, double t0, double dt,
+                                            std::vector<CollisionEvent>& events) {
+    return TimeStep(world, t0, dt, events).run();
 }
 
 } // namespace impulse

@@ -6,6 +6,7 @@
 #include "continuous_collision.h"
 #include "local_stepping.h"
 #include "time_of_impact.h"
+#include "time_stepping.h"
 
 namespace impulse {
 
@@ -125,10 +126,9 @@ std::optional<StepError> step_world(World& world, double t0, double dt,
     }
 }
 
-} // namespace
-
-std::optional<StepError> step(World& world, double t0, double dt,
-                              std::vector<CollisionEvent>& events) {
+// The event-driven step: the seed's loop or local stepping.
+std::optional<StepError> step_events(World& world, double t0, double dt,
+                                     std::vector<CollisionEvent>& events) {
     switch (world.solver.stepping) {
     case Stepping::world:
         return step_world(world, t0, dt, events);
@@ -136,6 +136,78 @@ std::optional<StepError> step(World& world, double t0, double dt,
         return step_local(world, t0, dt, events);
     }
     return step_world(world, t0, dt, events);
+}
+
+// resting_method automatic starts a world this large in time-stepping: the
+// events model's cost grows with every pair of it (as brute_force_bodies in
+// local_stepping.cpp, the size beyond which pairs need a broad phase).
+constexpr int events_bodies = 16;
+
+bool starts_in_time_stepping(const World& world) {
+    if (world.solver.resting_method == RestingMethod::time_stepping ||
+        world.solver.stepping == Stepping::local) {
+        return true;
+    }
+    int dynamic = 0;
+    for (const Body& body : world.bodies) {
+        dynamic += body.is_static() ? 0 : 1;
+    }
+    return dynamic > events_bodies;
+}
+
+// The failures that say the events model cannot carry the scene on, where
+// time-stepping can: a contact at rest, a Zeno cascade, a contact problem with
+// no solution.
+bool time_stepping_carries_on(StepFailure failure) {
+    return failure == StepFailure::resting_contact || failure == StepFailure::too_many_collisions ||
+           failure == StepFailure::contact_problem_unsolved;
+}
+
+std::optional<StepError> step_by_time_stepping(World& world, double t0, double dt,
+                                               std::vector<CollisionEvent>& events) {
+    if (world.work.time_stepping_from_step < 0) {
+        world.work.time_stepping_from_step = world.work.steps;
+    }
+    return step_time_stepping(world, t0, dt, events);
+}
+
+// automatic: events while they carry the scene; a step they cannot finish is
+// redone from its start by time-stepping, which then carries the rest.
+std::optional<StepError> step_automatic(World& world, double t0, double dt,
+                                        std::vector<CollisionEvent>& events) {
+    if (world.work.time_stepping_from_step >= 0 || starts_in_time_stepping(world)) {
+        return step_by_time_stepping(world, t0, dt, events);
+    }
+    const Configuration start = configuration_of(world);
+    const std::size_t events_at_start = events.size();
+    const long long steps = world.work.steps;
+    std::optional<StepError> error = step_events(world, t0, dt, events);
+    if (!error || !time_stepping_carries_on(error->failure)) {
+        return error;
+    }
+    commit(world, start);
+    events.resize(events_at_start);
+    world.resting_contacts.any = false;
+    world.work.steps = steps; // the step is taken once, by time-stepping
+    return step_by_time_stepping(world, t0, dt, events);
+}
+
+} // namespace
+
+std::optional<StepError> step(World& world, double t0, double dt,
+                              std::vector<CollisionEvent>& events) {
+    if (!world.solver.resting) {
+        return step_events(world, t0, dt, events);
+    }
+    switch (world.solver.resting_method) {
+    case RestingMethod::events:
+        return step_events(world, t0, dt, events);
+    case RestingMethod::time_stepping:
+        return step_by_time_stepping(world, t0, dt, events);
+    case RestingMethod::automatic:
+        return step_automatic(world, t0, dt, events);
+    }
+    return step_events(world, t0, dt, events);
 }
 
 } // namespace impulse

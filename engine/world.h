@@ -9,6 +9,7 @@
 #include "contact_resting.h"
 #include "solver_settings.h"
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -40,6 +41,10 @@ struct WorkCounters {
     long long unconverged_islands = 0;  // iterative solves stopped by the sweep cap
     long long overlap_guard_passes = 0; // position corrections after a step
     long long energy_guard_steps = 0;   // islands whose energy rise was removed
+    double energy_guard_joules = 0.0;   // energy those islands had gained, removed
+    // resting_method automatic: the index of the first step taken by
+    // time-stepping (steps before it were events), or -1 while events carry the scene.
+    long long time_stepping_from_step = -1;
 };
 
 // Scratch memory of local stepping, kept between steps so a step allocates nothing.
@@ -48,6 +53,33 @@ struct LocalScratch {
     std::vector<Aabb> boxes;
     UniformGrid grid;
     std::vector<PendingCollision> queue; // a heap ordered by later()
+};
+
+// Scratch memory of time-stepping (time_stepping_scratch.h), created on first
+// use. A copy of a World starts with none: it is scratch, not state, and its
+// contents need the contact-problem types that include this header.
+struct TimeSteppingScratch;
+class TimeSteppingScratchSlot {
+  public:
+    TimeSteppingScratchSlot() = default;
+    TimeSteppingScratchSlot(const TimeSteppingScratchSlot&) {}
+    TimeSteppingScratchSlot& operator=(const TimeSteppingScratchSlot&) { return *this; }
+    TimeSteppingScratchSlot(TimeSteppingScratchSlot&&) noexcept = default;
+    TimeSteppingScratchSlot& operator=(TimeSteppingScratchSlot&&) noexcept = default;
+    ~TimeSteppingScratchSlot() = default;
+    TimeSteppingScratch& get(); // time_stepping.cpp
+  private:
+    std::unique_ptr<TimeSteppingScratch, void (*)(TimeSteppingScratch*)> scratch_{nullptr, nullptr};
+};
+
+// The holding impulse a time-stepping contact point took in the last step,
+// keyed by its pair and its index in the pair's manifold: the iterative
+// solver's warm start. State, not scratch: a copy of the world keeps it.
+struct WarmImpulse {
+    int a = 0;
+    int b = 0;
+    int k = 0;
+    double impulse = 0.0;
 };
 
 struct World {
@@ -63,6 +95,10 @@ struct World {
     std::vector<Transform> scratch_transforms; // reused by the interpenetration test
     LocalScratch local;
     RestingContacts resting_contacts; // solver.resting: this interval's contact forces
+    // Time-stepping (solver.resting_method): last step's holding impulses in
+    // (a, b, k) order, and scratch.
+    std::vector<WarmImpulse> warm_impulses;
+    TimeSteppingScratchSlot ts;
 };
 
 // The pair of bodies i and k in the engine's order: a is the dynamic one when

@@ -449,9 +449,115 @@ TEST_CASE("solver", "[scene]") {
         require_rejected(scene_with(R"("solver": {"stepping": "local", "ccd": true},)"),
                          "solver.ccd", "is not available with \"stepping\": \"local\"");
     }
-    SECTION("resting with local stepping") {
-        require_rejected(scene_with(R"("solver": {"stepping": "local", "resting": true},)"),
-                         "solver.resting", "is not available with \"stepping\": \"local\"");
+    SECTION("ccd with local stepping and resting") {
+        // resting with local stepping is time-stepping, which needs no ccd.
+        require_rejected(
+            scene_with(R"("solver": {"stepping": "local", "resting": true, "ccd": true},)"),
+            "solver.ccd",
+            "is not needed with \"resting\": true and \"stepping\": \"local\", where "
+            "\"resting_method\": \"auto\" uses time-stepping: its speculative contacts already "
+            "cover each step's whole motion");
+    }
+}
+
+// ---------------------------------------------------------------- resting_method
+
+TEST_CASE("resting_method: auto by default, each name read and written back", "[scene]") {
+    using impulse::RestingMethod;
+    using impulse::harness::resting_method_from_name;
+    using impulse::harness::resting_method_name;
+    CHECK(parse_scene(scene_with(R"("solver": {"resting": true},)"), test_file)
+              .solver.resting_method == RestingMethod::automatic);
+    const std::pair<const char*, RestingMethod> names[] = {
+        {"auto", RestingMethod::automatic},
+        {"events", RestingMethod::events},
+        {"time-stepping", RestingMethod::time_stepping}};
+    for (const auto& [name, method] : names) {
+        INFO(name);
+        const Scene scene = parse_scene(
+            scene_with(std::string(R"("solver": {"resting": true, "resting_method": ")") + name +
+                       R"("},)"),
+            test_file);
+        CHECK(scene.solver.resting_method == method);
+        CHECK(std::string(resting_method_name(method)) == name);
+        RestingMethod back = RestingMethod::events;
+        CHECK(resting_method_from_name(name, back));
+        CHECK(back == method);
+    }
+    RestingMethod unchanged = RestingMethod::time_stepping;
+    CHECK_FALSE(resting_method_from_name("time_stepping", unchanged));
+    CHECK(unchanged == RestingMethod::time_stepping);
+}
+
+TEST_CASE("resting with local stepping loads, and is time-stepping from the start", "[scene]") {
+    using impulse::harness::time_stepping_from_start;
+    const Scene local =
+        parse_scene(scene_with(R"("solver": {"stepping": "local", "resting": true},)"), test_file);
+    CHECK(local.solver.resting);
+    CHECK(local.solver.stepping == impulse::Stepping::local);
+    CHECK(time_stepping_from_start(local.solver));
+    const Scene explicit_method = parse_scene(
+        scene_with(
+            R"("solver": {"stepping": "local", "resting": true, "resting_method": "time-stepping"},)"),
+        test_file);
+    CHECK(time_stepping_from_start(explicit_method.solver));
+    // world stepping: auto starts with events, and events never time-steps.
+    CHECK_FALSE(time_stepping_from_start(
+        parse_scene(scene_with(R"("solver": {"resting": true},)"), test_file).solver));
+    CHECK_FALSE(time_stepping_from_start(
+        parse_scene(scene_with(R"("solver": {"resting": true, "resting_method": "events"},)"),
+                    test_file)
+            .solver));
+    CHECK(time_stepping_from_start(
+        parse_scene(
+            scene_with(R"("solver": {"resting": true, "resting_method": "time-stepping"},)"),
+            test_file)
+            .solver));
+    // Events and ccd with world stepping are one model, as before.
+    CHECK(parse_scene(scene_with(R"("solver": {"resting": true, "resting_method": "events",
+                                               "ccd": true},)"),
+                      test_file)
+              .solver.ccd);
+}
+
+TEST_CASE("rejected resting_method", "[scene]") {
+    SECTION("an unknown method") {
+        require_rejected(
+            scene_with(R"("solver": {"resting": true, "resting_method": "baraff"},)"),
+            "solver.resting_method",
+            "must be \"auto\" (the default), \"events\" or \"time-stepping\", got \"baraff\"");
+    }
+    SECTION("not a string") {
+        require_rejected(scene_with(R"("solver": {"resting": true, "resting_method": true},)"),
+                         "solver.resting_method", "or \"time-stepping\", got true");
+    }
+    SECTION("without resting") {
+        require_rejected(scene_with(R"("solver": {"resting_method": "time-stepping"},)"),
+                         "solver.resting_method", "needs \"resting\": true in the solver block");
+        require_rejected(scene_with(R"("solver": {"resting": false, "resting_method": "auto"},)"),
+                         "solver.resting_method",
+                         "add \"resting\": true or remove \"resting_method\"");
+    }
+    SECTION("events with local stepping") {
+        require_rejected(
+            scene_with(
+                R"("solver": {"stepping": "local", "resting": true, "resting_method": "events"},)"),
+            "solver.resting_method",
+            "\"events\" is not available with \"stepping\": \"local\" (the event model holds "
+            "every resting pair of the world at once); use \"resting_method\": \"auto\" or "
+            "\"time-stepping\" with local stepping, or \"stepping\": \"world\" with events");
+    }
+    SECTION("ccd with time-stepping") {
+        require_rejected(scene_with(R"("solver": {"resting": true, "ccd": true,
+                                                  "resting_method": "time-stepping"},)"),
+                         "solver.ccd",
+                         "is not needed with \"resting_method\": \"time-stepping\": its "
+                         "speculative contacts already cover each step's whole motion, so nothing "
+                         "passes through unseen; remove \"ccd\"");
+    }
+    SECTION("a typo of the key") {
+        require_rejected(scene_with(R"("solver": {"resting": true, "resting_methods": "auto"},)"),
+                         "solver.resting_methods", "unknown key (did you mean resting_method?)");
     }
 }
 

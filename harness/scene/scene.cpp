@@ -47,11 +47,13 @@ constexpr const char* toi_method_names[] = {"bisection", "secant"};
 constexpr const char* contact_mode_names[] = {"single", "simultaneous"};
 constexpr const char* vertex_normal_names[] = {"reference-face", "bisector"};
 constexpr const char* stepping_names[] = {"world", "local"};
+constexpr const char* resting_method_names[] = {"auto", "events", "time-stepping"};
 static_assert(std::size(integrator_names) == static_cast<std::size_t>(integrator_count));
 static_assert(std::size(toi_method_names) == static_cast<std::size_t>(time_of_impact_method_count));
 static_assert(std::size(contact_mode_names) == static_cast<std::size_t>(contact_mode_count));
 static_assert(std::size(vertex_normal_names) == static_cast<std::size_t>(vertex_normal_count));
 static_assert(std::size(stepping_names) == static_cast<std::size_t>(stepping_count));
+static_assert(std::size(resting_method_names) == static_cast<std::size_t>(resting_method_count));
 
 // The name of `value` in its enum's table.
 template <class Enum, std::size_t N>
@@ -108,6 +110,9 @@ const char* vertex_normal_name(VertexNormal normal) {
 const char* stepping_name(Stepping stepping) {
     return name_in(stepping_names, stepping);
 }
+const char* resting_method_name(RestingMethod method) {
+    return name_in(resting_method_names, method);
+}
 
 bool integrator_from_name(const std::string& name, Integrator& out) {
     return enum_from_name(name, integrator_names, out);
@@ -123,6 +128,9 @@ bool vertex_normal_from_name(const std::string& name, VertexNormal& out) {
 }
 bool stepping_from_name(const std::string& name, Stepping& out) {
     return enum_from_name(name, stepping_names, out);
+}
+bool resting_method_from_name(const std::string& name, RestingMethod& out) {
+    return enum_from_name(name, resting_method_names, out);
 }
 
 } // namespace impulse::harness

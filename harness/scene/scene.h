@@ -170,11 +170,24 @@ const char* toi_method_name(TimeOfImpactMethod method);
 const char* contact_mode_name(ContactMode mode);
 const char* stepping_name(Stepping stepping);
 const char* vertex_normal_name(VertexNormal normal);
+const char* resting_method_name(RestingMethod method); // "auto", "events", "time-stepping"
 // false when the name is unknown
 bool integrator_from_name(const std::string& name, Integrator& out);
 bool toi_method_from_name(const std::string& name, TimeOfImpactMethod& out);
 bool stepping_from_name(const std::string& name, Stepping& out);
 bool contact_mode_from_name(const std::string& name, ContactMode& out);
 bool vertex_normal_from_name(const std::string& name, VertexNormal& out);
+bool resting_method_from_name(const std::string& name, RestingMethod& out);
+
+// true when the scene's contact is time-stepping from its first step, which
+// is known at load: "resting_method": "time-stepping", or "auto" with local
+// stepping (the event model needs every pair of the world at once). "auto"
+// with world stepping may still switch during the run (the engine decides;
+// docs/engine.md, "Dense contact").
+inline bool time_stepping_from_start(const SolverSettings& solver) {
+    return solver.resting && (solver.resting_method == RestingMethod::time_stepping ||
+                              (solver.resting_method == RestingMethod::automatic &&
+                               solver.stepping == Stepping::local));
+}
 
 } // namespace impulse::harness

@@ -69,10 +69,56 @@ void read_time(const Node& root, Scene& scene) {
     }
 }
 
+// solver.resting_method: how `resting: true` holds bodies in contact. Only
+// with resting on: without it there is no resting contact to hold, and a key
+// that silently did nothing would mislead.
+void read_resting_method(const Node& node, SolverSettings& solver) {
+    const std::optional<Node> method = optional_member(node, "resting_method");
+    if (!method) {
+        return;
+    }
+    if (!method->json().is_string() ||
+        !resting_method_from_name(method->json().get<std::string>(), solver.resting_method)) {
+        method->fail("must be \"auto\" (the default), \"events\" or \"time-stepping\", got " +
+                     shown(*method));
+    }
+    if (!solver.resting) {
+        method->fail("needs \"resting\": true in the solver block (it chooses how resting "
+                     "contact is held, and without resting there is none); add \"resting\": "
+                     "true or remove \"resting_method\"");
+    }
+    // The event model finds each collision by one search over every pair of
+    // the world; local stepping gives each body its own clock instead.
+    if (solver.resting_method == RestingMethod::events && solver.stepping == Stepping::local) {
+        method->fail("\"events\" is not available with \"stepping\": \"local\" (the event "
+                     "model holds every resting pair of the world at once); use "
+                     "\"resting_method\": \"auto\" or \"time-stepping\" with local stepping, or "
+                     "\"stepping\": \"world\" with events");
+    }
+}
+
+// ccd sweeps each pair's motion to find the collision inside the step. Time-
+// stepping contact has no collision search: its speculative contact points
+// are taken for every pair within reach of the step's motion, so a ccd
+// request there would do nothing, and is refused rather than ignored.
+void refuse_ccd_with_time_stepping(const Node& ccd, const SolverSettings& solver) {
+    if (!time_stepping_from_start(solver)) {
+        return;
+    }
+    const std::string why =
+        solver.resting_method == RestingMethod::time_stepping
+            ? "is not needed with \"resting_method\": \"time-stepping\""
+            : "is not needed with \"resting\": true and \"stepping\": \"local\", where "
+              "\"resting_method\": \"auto\" uses time-stepping";
+    ccd.fail(why + ": its speculative contacts already cover each step's whole motion, so "
+                   "nothing passes through unseen; remove \"ccd\"");
+}
+
 void read_solver(const Node& node, SolverSettings& solver) {
     require_object(node);
-    reject_unknown_keys(node, {"integrator", "toi", "toi_tolerance", "contact_tolerance",
-                               "contacts", "stepping", "vertex_normal", "ccd", "resting"});
+    reject_unknown_keys(node,
+                        {"integrator", "toi", "toi_tolerance", "contact_tolerance", "contacts",
+                         "stepping", "vertex_normal", "ccd", "resting", "resting_method"});
     if (const std::optional<Node> integrator = optional_member(node, "integrator")) {
         if (!integrator->json().is_string() ||
             !integrator_from_name(integrator->json().get<std::string>(), solver.integrator)) {
@@ -121,13 +167,15 @@ void read_solver(const Node& node, SolverSettings& solver) {
                          shown(*normal));
         }
     }
+    // resting (and its method) before ccd: whether ccd has anything to do
+    // depends on the contact method.
+    solver.resting = read_bool_or(node, "resting", solver.resting);
+    read_resting_method(node, solver);
     solver.ccd = read_bool_or(node, "ccd", solver.ccd);
     if (solver.ccd) {
-        refuse_with_local(*optional_member(node, "ccd"));
-    }
-    solver.resting = read_bool_or(node, "resting", solver.resting);
-    if (solver.resting) {
-        refuse_with_local(*optional_member(node, "resting"));
+        const Node ccd = *optional_member(node, "ccd");
+        refuse_ccd_with_time_stepping(ccd, solver);
+        refuse_with_local(ccd);
     }
 }
 

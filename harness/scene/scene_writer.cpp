@@ -78,8 +78,15 @@ std::string body_text(const SceneBody& body) {
     return text + "}";
 }
 
+// Every key, defaults included, except resting_method at "auto": it was added
+// after the protocol's first release, and a fixed key set (the python-seed
+// example engine's) must keep reading every scene that does not ask for more.
 std::string solver_text(const SolverSettings& solver) {
     const auto name = [](const char* value) { return quoted(value); };
+    const std::string method =
+        solver.resting_method == RestingMethod::automatic
+            ? ""
+            : ", \"resting_method\": " + name(resting_method_name(solver.resting_method));
     return std::string("{") + "\"integrator\": " + name(integrator_name(solver.integrator)) +
            ", \"toi\": " + name(toi_method_name(solver.toi)) +
            ", \"toi_tolerance\": " + format_double(solver.toi_tolerance) +
@@ -88,7 +95,7 @@ std::string solver_text(const SolverSettings& solver) {
            ", \"stepping\": " + name(stepping_name(solver.stepping)) +
            ", \"vertex_normal\": " + name(vertex_normal_name(solver.vertex_normal)) +
            ", \"ccd\": " + (solver.ccd ? "true" : "false") +
-           ", \"resting\": " + (solver.resting ? "true" : "false") + "}";
+           ", \"resting\": " + (solver.resting ? "true" : "false") + method + "}";
 }
 
 } // namespace

@@ -8,6 +8,7 @@
 #include "world.h"
 
 #include <cmath>
+#include <unistd.h>
 #include <utility>
 
 namespace impulse::harness {
@@ -68,11 +69,22 @@ class ImpulseSimulator final : public Simulator {
             settings.emplace_back("vertex_normal",
                                   double_quoted(vertex_normal_name(s.vertex_normal)));
         }
+        if (s.resting_method != RestingMethod::automatic) {
+            settings.emplace_back("resting_method",
+                                  double_quoted(resting_method_name(s.resting_method)));
+        }
         return settings;
     }
 
     void step(double t0, double dt) override {
+        const bool time_stepping_before = world_.work.time_stepping_from_step >= 0;
         const std::optional<StepError> error = impulse::step(world_, t0, dt, events_);
+        // From the first step is the engine's rule for a pile (docs/engine.md),
+        // not a switch: only a switch after event steps is noted.
+        if (!time_stepping_before && world_.work.time_stepping_from_step > 0 &&
+            scene_.solver.resting_method == RestingMethod::automatic) {
+            note_switch(t0);
+        }
         // A NaN is named first: it is the cause of whatever else went wrong.
         refuse_non_finite(t0 + dt);
         if (error) {
@@ -132,10 +144,89 @@ class ImpulseSimulator final : public Simulator {
         }
     }
 
+    // The contact model a step failure comes from, for the setting its
+    // sentence names: each model's cure is the next one up.
+    enum class ContactModel { collisions_only, events, automatic_events, time_stepping };
+    ContactModel model_in_use() const {
+        const SolverSettings& s = scene_.solver;
+        if (!s.resting) {
+            return ContactModel::collisions_only;
+        }
+        if (s.resting_method == RestingMethod::events) {
+            return ContactModel::events;
+        }
+        // "auto" keeps time-stepping once it has switched to it (the engine
+        // records the step before it tries it, so a failure of that very
+        // step is time-stepping's).
+        if (time_stepping_from_start(s) || s.resting_method == RestingMethod::time_stepping ||
+            world_.work.time_stepping_from_step >= 0) {
+            return ContactModel::time_stepping;
+        }
+        return ContactModel::automatic_events;
+    }
+
+    std::string dt_and_tolerance() const {
+        return "a smaller dt (now " + format_double(scene_.dt) +
+               " s) or a larger solver.contact_tolerance (now " +
+               format_double(scene_.solver.contact_tolerance) + " m)";
+    }
+
+    // What carries a scene on past a Zeno cascade or a resting contact.
+    std::string carry_on(ContactModel model) const {
+        switch (model) {
+        case ContactModel::collisions_only:
+            return "set \"resting\": true in the solver block (contact forces then end the "
+                   "cascade and hold resting bodies), or end the scene earlier";
+        case ContactModel::events:
+            return "use \"resting_method\": \"auto\" or \"time-stepping\" in the solver block "
+                   "(time-stepping holds every contact at every step, with no event search and no "
+                   "cascade)";
+        case ContactModel::automatic_events:
+            return "set \"resting_method\": \"time-stepping\" in the solver block to use "
+                   "time-stepping from the start";
+        case ContactModel::time_stepping:
+            break;
+        }
+        return "use " + dt_and_tolerance();
+    }
+
+    std::string unsolved(const std::string& pair, const std::string& at, ContactModel model) const {
+        if (model == ContactModel::time_stepping) {
+            return "the contact problem of the island around " + pair + " at " + at +
+                   " has no solution the solver could find (docs/engine.md, \"Dense contact\"); "
+                   "use " +
+                   dt_and_tolerance();
+        }
+        const bool simultaneous = scene_.solver.contacts == ContactMode::simultaneous;
+        std::string cure;
+        if (model == ContactModel::events || model == ContactModel::automatic_events) {
+            cure = model == ContactModel::events
+                       ? "\"resting_method\": \"auto\" or \"time-stepping\", "
+                       : "\"resting_method\": \"time-stepping\", ";
+        }
+        if (simultaneous) {
+            cure += "contacts \"single\", ";
+        }
+        return std::string("the ") + (simultaneous ? "simultaneous " : "") +
+               "contact problem around " + pair + " at " + at +
+               " has no solution the solver could find (docs/engine.md, \"" +
+               (simultaneous ? "Simultaneous contact" : "Resting contact") + "\"); use " + cure +
+               dt_and_tolerance();
+    }
+
+    // 'name', or "a body" when the engine could not say which (an island's
+    // failure need not name one pair).
+    std::string body_named(int index) const {
+        const bool known = index >= 0 && static_cast<std::size_t>(index) < scene_.bodies.size();
+        return known ? single_quoted(scene_.bodies[static_cast<std::size_t>(index)].name)
+                     : std::string("a body");
+    }
+
     std::string describe(const StepError& error) const {
-        const std::string a = "'" + scene_.bodies[error.body_a].name + "'";
-        const std::string b = "'" + scene_.bodies[error.body_b].name + "'";
+        const std::string a = body_named(error.body_a);
+        const std::string b = body_named(error.body_b);
         const std::string at = "t = " + format_double(error.time) + " s";
+        const ContactModel model = model_in_use();
         switch (error.failure) {
         case StepFailure::toi_not_converged:
             return "the time-of-impact search between " + a + " and " + b + " at " + at +
@@ -146,16 +237,17 @@ class ImpulseSimulator final : public Simulator {
         case StepFailure::too_many_collisions:
             return "more than " + std::to_string(scene_.solver.max_collisions_per_step) +
                    " collisions between " + a + " and " + b + " within one step at " + at +
-                   ": the bounces no longer end (a Zeno cascade); end the scene earlier";
+                   ": the bounces no longer end (a Zeno cascade); " + carry_on(model);
         case StepFailure::resting_contact:
             return a + " and " + b + " are in resting contact at " + at +
-                   " (touching, not approaching, interpenetrating just after), which the"
-                   " seed's collision-only model cannot resolve; end the scene before the"
-                   " bounces die out";
+                   " (touching, not approaching, interpenetrating just after), which " +
+                   (model == ContactModel::collisions_only
+                        ? "collisions alone (\"resting\": false) cannot hold"
+                        : "the event model cannot hold (a contact that comes to rest within a "
+                          "step)") +
+                   "; " + carry_on(model);
         case StepFailure::contact_problem_unsolved:
-            return "the simultaneous contact problem around " + a + " and " + b + " at " + at +
-                   " has no solution the solver could find (docs/engine.md, \"Simultaneous"
-                   " contact\"); use contacts \"single\" for this scene";
+            return unsolved(a + " and " + b, at, model);
         case StepFailure::sweep_not_converged:
             return "the swept test between " + a + " and " + b + " at " + at +
                    " needed more than " + std::to_string(scene_.solver.max_search_iterations) +
@@ -163,6 +255,27 @@ class ImpulseSimulator final : public Simulator {
                    " be bounded (a tunnel the engine cannot rule out); use a smaller dt";
         }
         return "the simulation stopped at " + at;
+    }
+
+    // Once per run, when "auto" leaves the event model for time-stepping in
+    // the middle of a run: the trajectory then differs from an events run from
+    // that step on, and a user comparing the two should know where. Standard
+    // error only, so no output file and
+    // no stdout changes; on a terminal the progress bar's line is erased
+    // first (it is redrawn below).
+    void note_switch(double t) const {
+        std::string text = "note: " + scene_.file +
+                           ": \"resting_method\": \"auto\" switched from events to "
+                           "time-stepping at t = " +
+                           format_double(t) +
+                           " s, where the event model could not go on, and keeps it to the end; "
+                           "set \"resting_method\": \"time-stepping\" to use it from the start, "
+                           "or \"events\" to stop there instead\n";
+        if (::isatty(STDERR_FILENO) != 0) {
+            text = "\r\x1b[K" + text;
+        }
+        // One write, so lines of scenes run side by side (check -j) never mix.
+        [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, text.data(), text.size());
     }
 
     Scene scene_;

@@ -1,0 +1,127 @@
+#include "contact_candidates.h"
+
+#include "manifold.h"
+#include "restitution.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace impulse {
+
+double rotation_radius(const Shape& shape) {
+    double r = 0.0;
+    for (int i = 0; i < shape.polygon.count; ++i) {
+        r = std::max(r, length(shape.polygon.vertices[static_cast<std::size_t>(i)]));
+    }
+    return shape.type == ShapeType::circle ? 0.0 : r;
+}
+
+namespace {
+
+// The rounding of rotated vertices (as local stepping's boxes allow for).
+double rounding_margin(const Transform& pose, const Shape& shape, double rotation_reach) {
+    const double reach = std::max(std::abs(pose.p.x), std::abs(pose.p.y)) + shape.radius;
+    return 1e-12 * (reach + rotation_reach) + 1e-300;
+}
+
+// How far any point of a dynamic body can move within h: its speed, what
+// gravity adds (at most |g| h^2 for every integrator), and its turning.
+double body_reach(const World& world, const Body& body, double h) {
+    if (body.is_static()) {
+        return 0.0;
+    }
+    const BodyState& s = body.state;
+    return length(s.velocity) * h + length(world.gravity) * h * h +
+           rotation_radius(body.shape) * std::abs(s.angular_velocity) * h;
+}
+
+bool pair_less(const CandidatePair& x, const CandidatePair& y) {
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+}
+
+void find_pairs(World& world, TimeSteppingScratch& s) {
+    const int n = static_cast<int>(world.bodies.size());
+    s.grid.build(s.boxes);
+    s.pairs.clear();
+    const double d = world.solver.contact_tolerance;
+    for (int i = 0; i < n; ++i) {
+        if (world.bodies[static_cast<std::size_t>(i)].is_static()) {
+            continue;
+        }
+        const Aabb box = s.boxes[static_cast<std::size_t>(i)];
+        s.grid.query(box, [&](int k) {
+            const Body& other = world.bodies[static_cast<std::size_t>(k)];
+            // Two dynamic bodies once, from the lower index.
+            if (k == i || (!other.is_static() && k < i) ||
+                !overlaps(box, s.boxes[static_cast<std::size_t>(k)])) {
+                return;
+            }
+            const Pair p = pair_of(world, i, k);
+            s.pairs.push_back({p.a, p.b,
+                               s.reach[static_cast<std::size_t>(p.a)] +
+                                   s.reach[static_cast<std::size_t>(p.b)] + d});
+        });
+    }
+    // Discovery order depends on the grid's cells: the sort makes it (a, b).
+    std::sort(s.pairs.begin(), s.pairs.end(), pair_less);
+}
+
+} // namespace
+
+double gravity_normal_acceleration(const World& world, const ContactPoint& point) {
+    const Vec2 ga =
+        world.bodies[static_cast<std::size_t>(point.a)].is_static() ? Vec2{} : world.gravity;
+    const Vec2 gb =
+        world.bodies[static_cast<std::size_t>(point.b)].is_static() ? Vec2{} : world.gravity;
+    return dot(ga - gb, point.contact.normal);
+}
+
+ContactPoint candidate_point(const World& world, int pair, int a, int b, const Contact& contact) {
+    const Body& ba = world.bodies[static_cast<std::size_t>(a)];
+    const Body& bb = world.bodies[static_cast<std::size_t>(b)];
+    return {pair,
+            a,
+            b,
+            contact,
+            dot(perp(contact.point - ba.state.position), contact.normal),
+            dot(perp(contact.point - bb.state.position), contact.normal),
+            relative_normal_velocity(ba, bb, contact.point, contact.normal)};
+}
+
+void find_contact_candidates(World& world, double h, TimeSteppingScratch& s) {
+    const std::size_t n = world.bodies.size();
+    s.poses.resize(n);
+    s.reach.resize(n);
+    s.boxes.resize(n);
+    const double d = world.solver.contact_tolerance;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Body& body = world.bodies[i];
+        s.poses[i] = transform_of(body.state);
+        s.reach[i] = std::max(body_reach(world, body, h), s.reach_floor[i]);
+        const double margin =
+            s.reach[i] + d + rounding_margin(s.poses[i], body.shape, rotation_radius(body.shape));
+        s.boxes[i] = aabb_of(body.shape, s.poses[i], margin);
+    }
+    find_pairs(world, s);
+
+    s.points.clear();
+    s.feature.clear();
+    s.links.clear();
+    for (std::size_t p = 0; p < s.pairs.size(); ++p) {
+        const CandidatePair& pair = s.pairs[p];
+        const Body& a = world.bodies[static_cast<std::size_t>(pair.a)];
+        const Body& b = world.bodies[static_cast<std::size_t>(pair.b)];
+        ++world.work.narrow_phase_queries;
+        const Manifold m = collide(a.shape, s.poses[static_cast<std::size_t>(pair.a)], b.shape,
+                                   s.poses[static_cast<std::size_t>(pair.b)], pair.reach,
+                                   world.solver.vertex_normal);
+        for (int k = 0; k < m.point_count; ++k) {
+            s.points.push_back(candidate_point(world, static_cast<int>(p), pair.a, pair.b,
+                                               m.points[static_cast<std::size_t>(k)]));
+            s.feature.push_back(k);
+            s.links.push_back({pair.a, pair.b});
+        }
+    }
+}
+
+} // namespace impulse

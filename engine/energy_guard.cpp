@@ -1,0 +1,64 @@
+#include "energy_guard.h"
+
+#include <cmath>
+#include <limits>
+
+namespace impulse {
+
+namespace {
+
+struct Energy {
+    double kinetic = 0.0;
+    double total = 0.0;
+    double magnitude = 0.0; // sum of |terms|: the scale of its rounding
+};
+
+void add_energy(const Body& body, const BodyState& state, Vec2 gravity, Energy& e) {
+    const double m = 1.0 / body.inv_mass;
+    double k = 0.5 * m * length_squared(state.velocity);
+    if (body.rotates()) {
+        k += 0.5 * (1.0 / body.inv_inertia) * state.angular_velocity * state.angular_velocity;
+    }
+    const double p = -m * dot(gravity, state.position);
+    e.kinetic += k;
+    e.total += k + p;
+    e.magnitude += k + std::abs(p);
+}
+
+} // namespace
+
+void guard_energy(World& world, TimeSteppingScratch& s) {
+    constexpr double rounding = 8.0 * std::numeric_limits<double>::epsilon();
+    for (int i = 0; i < s.islands.count(); ++i) {
+        if (s.island_pushed[static_cast<std::size_t>(i)] == 0) {
+            continue; // free flight by the integrator: its own energy behaviour
+        }
+        const int b0 = s.islands.body_offsets[static_cast<std::size_t>(i)];
+        const int b1 = s.islands.body_offsets[static_cast<std::size_t>(i) + 1];
+        Energy before;
+        Energy after;
+        for (int k = b0; k < b1; ++k) {
+            const std::size_t b =
+                static_cast<std::size_t>(s.islands.bodies[static_cast<std::size_t>(k)]);
+            add_energy(world.bodies[b], s.start[b], world.gravity, before);
+            add_energy(world.bodies[b], world.bodies[b].state, world.gravity, after);
+        }
+        const double gained = after.total - before.total;
+        if (!(gained > rounding * (before.magnitude + after.magnitude))) {
+            continue;
+        }
+        ++world.work.energy_guard_steps;
+        world.work.energy_guard_joules += gained;
+        const bool scale = after.kinetic > gained;
+        const double factor = scale ? std::sqrt(1.0 - gained / after.kinetic) : 0.0;
+        for (int k = b0; k < b1; ++k) {
+            const std::size_t b =
+                static_cast<std::size_t>(s.islands.bodies[static_cast<std::size_t>(k)]);
+            BodyState& state = world.bodies[b].state;
+            state.velocity = factor * state.velocity;
+            state.angular_velocity = factor * state.angular_velocity;
+        }
+    }
+}
+
+} // namespace impulse

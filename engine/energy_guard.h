@@ -1,0 +1,21 @@
+// The energy guard of time-stepping (docs/engine.md, "Dense contact"). The
+// holding step itself never adds energy (docs/physics.md), but the overlap
+// guard lifts bodies and an iterative solve stops at a residual: either can
+// add a little. An island whose energy rose beyond rounding gives it back.
+#pragma once
+
+#include "time_stepping_scratch.h"
+#include "world.h"
+
+namespace impulse {
+
+// For every island some impulse acted on this step: if its energy
+// (kinetic + potential, from s.start to now) rose by dE beyond 8 eps of the
+// sum of its terms' magnitudes, its velocities are scaled by
+// sqrt(1 - dE / K), or, when its kinetic energy K is less than dE, it stops
+// (zero velocity; its poses stay, so the overlap guard's work is kept and the
+// rise left is at most the guard's lift, m |g| times at most its depth).
+// Counted in world.work.energy_guard_steps and energy_guard_joules.
+void guard_energy(World& world, TimeSteppingScratch& s);
+
+} // namespace impulse

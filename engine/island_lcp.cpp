@@ -1,0 +1,86 @@
+#include "island_lcp.h"
+
+#include "lcp.h"
+#include "pgs.h"
+
+#include <algorithm>
+
+namespace impulse {
+
+namespace {
+
+IslandSolve solve_directly(World& world, IslandProblem& problem) {
+    const std::size_t n = problem.points.size();
+    IslandSolve result;
+    ++world.work.direct_solves;
+    problem.A.resize(n * n);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = i; j < n; ++j) {
+            problem.A[i * n + j] = delassus(world, problem.points[i], problem.points[j]);
+            problem.A[j * n + i] = problem.A[i * n + j];
+        }
+    }
+    const LcpSolution solution = solve_lcp(problem.A, problem.q);
+    result.solved = solution.solved;
+    problem.lambda.assign(n, 0.0);
+    if (solution.solved) {
+        for (std::size_t i = 0; i < n; ++i) {
+            problem.lambda[i] = solution.lambda[i];
+        }
+    }
+    return result;
+}
+
+// Gauss-Seidel sweeps in the order of the points' heights against gravity,
+// highest first (ties in the given order): a column's weight then travels down
+// in one sweep and the alternate sweep carries the floor's answer back up
+// (shock propagation, Guendelman 2003).
+IslandSolve solve_iteratively(World& world, IslandProblem& p, double tolerance) {
+    const std::size_t n = p.points.size();
+    p.order.resize(n);
+    p.height.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        p.order[i] = static_cast<int>(i);
+        p.height[i] = -dot(world.gravity, p.points[i].contact.point);
+    }
+    std::sort(p.order.begin(), p.order.end(), [&](int x, int y) {
+        const double hx = p.height[static_cast<std::size_t>(x)];
+        const double hy = p.height[static_cast<std::size_t>(y)];
+        return hx != hy ? hx > hy : x < y;
+    });
+    p.sorted_points.clear();
+    p.sorted_q.clear();
+    p.sorted_lambda.clear();
+    for (const int i : p.order) {
+        p.sorted_points.push_back(p.points[static_cast<std::size_t>(i)]);
+        p.sorted_q.push_back(p.q[static_cast<std::size_t>(i)]);
+        p.sorted_lambda.push_back(p.lambda[static_cast<std::size_t>(i)]);
+    }
+    PgsSettings settings;
+    settings.tolerance = tolerance;
+    settings.max_sweeps = world.solver.max_search_iterations;
+    const PgsResult r =
+        solve_pgs(world, p.sorted_points, p.sorted_q, p.sorted_lambda, settings, p.pgs);
+    world.work.solver_sweeps += r.sweeps;
+    if (!r.converged) {
+        ++world.work.unconverged_islands;
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+        p.lambda[static_cast<std::size_t>(p.order[k])] = p.sorted_lambda[k];
+    }
+    IslandSolve result;
+    result.converged = r.converged;
+    result.residual = r.residual;
+    return result;
+}
+
+} // namespace
+
+IslandSolve solve_island(World& world, IslandProblem& problem, double tolerance) {
+    if (problem.points.size() <= direct_solve_points) {
+        return solve_directly(world, problem);
+    }
+    return solve_iteratively(world, problem, tolerance);
+}
+
+} // namespace impulse

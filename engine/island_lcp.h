@@ -1,0 +1,29 @@
+// One island's contact problem, solved to a stated tolerance by the solver its
+// size calls for (docs/engine.md, "Dense contact"): the pivoting solver
+// (solve_lcp, lcp.h) up to direct_solve_points points, exact to 1e-9 of
+// max |q_i| at O(n^3) per pivot; projected Gauss-Seidel (solve_pgs, pgs.h)
+// above, at O(n) per sweep, until every point's residual is within the
+// tolerance given.
+#pragma once
+
+#include "time_stepping_scratch.h"
+#include "world.h"
+
+namespace impulse {
+
+// At or below this many points an island is solved directly.
+inline constexpr std::size_t direct_solve_points = 16;
+
+struct IslandSolve {
+    bool solved = true;    // false: the pivoting solver found no solution
+    bool converged = true; // false: the sweep cap stopped the iterative solver
+    double residual = 0.0; // the iterative solver's last residual
+};
+
+// Solves w = A lambda + q >= 0, lambda >= 0, lambda . w = 0 over problem.points
+// (A = J M^-1 J^T at the bodies' current states) into problem.lambda, which
+// holds the warm start on entry (used by the iterative solver only).
+// tolerance is the iterative solver's residual bound (a velocity).
+IslandSolve solve_island(World& world, IslandProblem& problem, double tolerance);
+
+} // namespace impulse

@@ -1,0 +1,65 @@
+// Memory the time-stepping step reuses from one step to the next, so that a
+// step allocates nothing once the world has been stepped a few times: every
+// vector is cleared, never shrunk.
+#pragma once
+
+#include "broad_phase.h"
+#include "contact_problem.h"
+#include "islands.h"
+#include "pgs.h"
+
+#include <vector>
+
+namespace impulse {
+
+// A pair of bodies whose boxes, grown by what the step's motion can cover,
+// overlap: its contact points within that reach are the step's candidates.
+struct CandidatePair {
+    int a = 0;
+    int b = 0;
+    double reach = 0.0; // how far the pair can close within the step (metres)
+};
+
+// The scratch of one island's contact problem.
+struct IslandProblem {
+    std::vector<int> rows;            // indices into TimeSteppingScratch::points
+    std::vector<ContactPoint> points; // the rows' points, in rows' order
+    std::vector<double> q;
+    std::vector<double> lambda;
+    std::vector<double> A; // row-major Delassus matrix of a direct solve
+    // An iterative solve's sweep order (by height against gravity) and the
+    // problem in that order.
+    std::vector<int> order;
+    std::vector<double> height;
+    std::vector<ContactPoint> sorted_points;
+    std::vector<double> sorted_q;
+    std::vector<double> sorted_lambda;
+    PgsScratch pgs;
+};
+
+struct TimeSteppingScratch {
+    std::vector<BodyState> start;    // x_k, v_k of every body
+    std::vector<BodyState> free_end; // free flight by the scene's integrator
+    std::vector<Transform> poses;    // per body, at the configuration being looked at
+    std::vector<double> reach;       // per body: how far any of its points moves in the step
+    std::vector<double> reach_floor; // per body: at least this (a retried step's lesson)
+    std::vector<Aabb> boxes;
+    UniformGrid grid;
+    std::vector<CandidatePair> pairs; // sorted by (a, b)
+    // Every candidate point of the step, in (a, b, k) order; a point's `pair`
+    // is its index in `pairs`, feature its index k in the pair's manifold.
+    std::vector<ContactPoint> points;
+    std::vector<int> feature;
+    std::vector<double> warm; // per point: last step's holding impulse, or 0
+    std::vector<double> held; // per point: this step's holding impulse
+    std::vector<IslandLink> links;
+    Islands islands;
+    IslandScratch island_scratch;
+    std::vector<char> in_island;       // per body
+    std::vector<double> island_energy; // per island: energy at the step's start
+    std::vector<char> island_pushed;   // per island: some impulse acted
+    IslandProblem problem;
+    std::vector<double> pair_gap; // the overlap guard's separation of each candidate pair
+};
+
+} // namespace impulse

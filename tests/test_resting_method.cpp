@@ -1,0 +1,303 @@
+// solver.resting_method through the real tool (issue 14; docs/formats.md, the
+// solver table; docs/refusals-and-progress.md, "Dense contact"): each refusal
+// is one sentence naming the file and the JSON path, exit 2, nothing written
+// and no output file destroyed; resting with local stepping runs; the key is
+// written into a golden's solver block and the normalized scene only when it
+// is not "auto"; a step failure names the setting that carries the scene on;
+// a scene that time-steps from its start is not refused for tunnelling.
+#include "scene.h"
+#include "scene_writer.h"
+#include "support/files.h"
+#include "support/tool.h"
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using namespace impulse::test;
+
+namespace {
+
+// A disc of radius 0.5 at height `y` (its centre) above static ground whose
+// top is at y = 0, under the given solver block, for `duration` seconds.
+std::string disc_scene(const std::string& solver, double y = 5.0,
+                       const std::string& duration = "0.1", const std::string& extra = "") {
+    return R"({"schema":"impulse/scene@1","name":"m","dt":0.01,"duration":)" + duration + extra +
+           R"(,"solver":)" + solver +
+           R"(,"bodies":[{"name":"ground","static":true,"shape":{"box":[5,0.5]},"position":[0,-0.5]},)"
+           R"({"name":"ball","shape":{"circle":0.5},"mass":1,"position":[0,)" +
+           std::to_string(y) + "]}]}";
+}
+
+// One line, exit 2, no abort, no stack trace.
+void require_one_sentence(const Outcome& o) {
+    INFO(o.err);
+    REQUIRE(o.exited);
+    CHECK(o.exit_code == 2);
+    CHECK(o.err.find('\n') == o.err.size() - 1);
+    CHECK(o.err.find("internal error") == std::string::npos);
+}
+
+bool has(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+// `run` refuses the scene with "FILE: PATH: ..." containing `words`, and the
+// output file it was given keeps its bytes.
+void require_refused(const std::string& scene_text, const std::string& path,
+                     const std::string& words) {
+    const TempDir tmp;
+    const fs::path scene = tmp.dir / "m.json";
+    spit(scene, scene_text);
+    const fs::path out = tmp.dir / "out.json";
+    spit(out, "an earlier run's bytes");
+    const Outcome o = run_tool({"run", scene.string(), "--out", out.string()});
+    INFO(scene_text);
+    require_one_sentence(o);
+    CHECK(o.err.rfind(scene.string() + ": " + path + ": ", 0) == 0);
+    CHECK(has(o.err, words));
+    CHECK(slurp(out) == "an earlier run's bytes");
+}
+
+} // namespace
+
+// ---------------------------------------------------------------- refusals at load
+
+TEST_CASE("run refuses each impossible resting_method with the file and the key",
+          "[resting-method]") {
+    SECTION("a value that is none of the three") {
+        require_refused(
+            disc_scene(R"({"resting":true,"resting_method":"baraff"})"), "solver.resting_method",
+            R"(must be "auto" (the default), "events" or "time-stepping", got "baraff")");
+    }
+    SECTION("without resting") {
+        require_refused(disc_scene(R"({"resting_method":"time-stepping"})"),
+                        "solver.resting_method", R"(needs "resting": true in the solver block)");
+    }
+    SECTION("events with local stepping, naming both keys and what to use") {
+        require_refused(
+            disc_scene(R"({"resting":true,"stepping":"local","resting_method":"events"})"),
+            "solver.resting_method",
+            R"("events" is not available with "stepping": "local" (the event model holds every resting pair of the world at once); use "resting_method": "auto" or "time-stepping" with local stepping, or "stepping": "world" with events)");
+    }
+    SECTION("ccd with time-stepping") {
+        require_refused(
+            disc_scene(R"({"resting":true,"resting_method":"time-stepping","ccd":true})"),
+            "solver.ccd",
+            R"(is not needed with "resting_method": "time-stepping": its speculative contacts already cover each step's whole motion, so nothing passes through unseen; remove "ccd")");
+    }
+    SECTION("ccd with resting and local stepping, where auto is time-stepping") {
+        require_refused(
+            disc_scene(R"({"resting":true,"stepping":"local","ccd":true})"), "solver.ccd",
+            R"(where "resting_method": "auto" uses time-stepping: its speculative contacts already cover each step's whole motion)");
+    }
+}
+
+TEST_CASE("resting with local stepping loads and runs", "[resting-method]") {
+    // Until this issue the loader refused it; 0.1 s of free fall never
+    // reaches the ground (4.5 m below), so any engine version runs it.
+    const TempDir tmp;
+    const fs::path scene = tmp.dir / "m.json";
+    spit(scene, disc_scene(R"({"resting":true,"stepping":"local"})"));
+    const fs::path out = tmp.dir / "out.json";
+    const Outcome o = run_tool({"run", scene.string(), "--out", out.string()});
+    INFO(o.err);
+    CHECK(o.exit_code == 0);
+    CHECK(has(slurp(out), R"("resting": true)"));
+    CHECK(has(slurp(out), R"("stepping": "local")"));
+}
+
+// ---------------------------------------------------------------- goldens and the normalized scene
+
+TEST_CASE("a golden's solver block names resting_method only when it is not auto",
+          "[resting-method]") {
+    const TempDir root;
+    const std::string r = root.dir.string();
+    fs::create_directories(root.dir / "goldens");
+    const std::vector<std::pair<std::string, std::string>> scenes = {
+        {"default", R"({"resting":true})"},
+        {"auto", R"({"resting":true,"resting_method":"auto"})"},
+        {"events", R"({"resting":true,"resting_method":"events"})"},
+        {"time-stepping", R"({"resting":true,"resting_method":"time-stepping"})"}};
+    for (const auto& [name, solver] : scenes) {
+        // A scene's name is its file's.
+        std::string text = disc_scene(solver);
+        text.replace(text.find(R"("name":"m")"), 10, R"("name":")" + name + "\"");
+        spit(root.dir / "harness" / "scenes" / (name + ".json"), text);
+    }
+    const Outcome blessed = run_tool({"bless", "--root", r});
+    INFO(blessed.out << blessed.err);
+    REQUIRE(blessed.exit_code == 0);
+    for (const char* name : {"default", "auto"}) {
+        const std::string golden = slurp(root.dir / "goldens" / (std::string(name) + ".json"));
+        INFO(name);
+        REQUIRE(has(golden, R"("resting": true)"));
+        CHECK_FALSE(has(golden, "resting_method"));
+    }
+    CHECK(has(slurp(root.dir / "goldens" / "events.json"), R"("resting_method": "events")"));
+    CHECK(has(slurp(root.dir / "goldens" / "time-stepping.json"),
+              R"("resting_method": "time-stepping")"));
+    // The goldens just written are what check compares against.
+    const Outcome checked = run_tool({"check", "--root", r});
+    INFO(checked.out << checked.err);
+    CHECK(checked.exit_code == 0);
+}
+
+TEST_CASE("the normalized scene keeps resting_method, and leaves out auto", "[resting-method]") {
+    using impulse::RestingMethod;
+    using impulse::harness::parse_scene;
+    using impulse::harness::write_normalized_scene;
+    const std::pair<const char*, RestingMethod> methods[] = {
+        {"auto", RestingMethod::automatic},
+        {"events", RestingMethod::events},
+        {"time-stepping", RestingMethod::time_stepping}};
+    for (const auto& [name, method] : methods) {
+        INFO(name);
+        const std::string solver =
+            std::string(R"({"resting":true,"resting_method":")") + name + R"("})";
+        const std::string text = write_normalized_scene(parse_scene(disc_scene(solver), "m.json"));
+        CHECK(has(text, "resting_method") == (method != RestingMethod::automatic));
+        if (method != RestingMethod::automatic) {
+            CHECK(has(text, std::string(R"("resting_method": ")") + name + "\""));
+        }
+        const impulse::harness::Scene back = parse_scene(text, "normalized");
+        CHECK(back.solver.resting);
+        CHECK(back.solver.resting_method == method);
+    }
+}
+
+// ---------------------------------------------------------------- step failures name a setting
+
+TEST_CASE("without resting, the end of a cascade names \"resting\": true", "[resting-method]") {
+    // A disc dropped 4.5 m at e = 0.5 bounces ever lower and comes to rest
+    // at t_inf = 3 sqrt(2 h / g) = 2.87 s, inside the 4 s run: collisions
+    // alone cannot go on there.
+    const TempDir tmp;
+    const fs::path scene = tmp.dir / "m.json";
+    spit(scene, disc_scene(R"({"integrator":"verlet"})", 5.0, "4", R"(,"restitution":0.5)"));
+    const fs::path out = tmp.dir / "out.json";
+    const Outcome o = run_tool({"run", scene.string(), "--out", out.string()});
+    require_one_sentence(o);
+    INFO(o.err);
+    CHECK(o.err.rfind(scene.string() + ": ", 0) == 0);
+    CHECK((has(o.err, "(a Zeno cascade)") || has(o.err, "are in resting contact")));
+    CHECK(has(o.err, R"(set "resting": true in the solver block)"));
+    CHECK_FALSE(has(o.err, "seed's"));
+    CHECK_FALSE(fs::exists(out));
+}
+
+// The plan's five discs of mixed sizes (1:5) and masses (1:100) in an open
+// box, e = 0.5 (docs/engine.md, "Dense contact"): a contact begins at rest
+// within a step, which the event model cannot hold.
+const std::string pile_of_five =
+    R"({"schema":"impulse/scene@1","name":"pile","restitution":0.5,"dt":0.016666666666666666,)"
+    R"("duration":6,"solver":{"integrator":"verlet","toi":"secant","resting":true,)"
+    R"("resting_method":"events"},"bodies":[)"
+    R"({"name":"floor","static":true,"shape":{"box":[2,0.5]},"position":[0,-0.5]},)"
+    R"({"name":"left","static":true,"shape":{"box":[0.25,1.5]},"position":[-2.25,1.5]},)"
+    R"({"name":"right","static":true,"shape":{"box":[0.25,1.5]},"position":[2.25,1.5]},)"
+    R"({"name":"p0","shape":{"circle":0.1},"mass":0.05,"position":[-0.9,0.6]},)"
+    R"({"name":"p1","shape":{"circle":0.5},"mass":5,"position":[0,0.8]},)"
+    R"({"name":"p2","shape":{"circle":0.25},"mass":1.2,"position":[0.7,1.6]},)"
+    R"({"name":"p3","shape":{"circle":0.3},"mass":1.8,"position":[-0.5,1.9]},)"
+    R"({"name":"p4","shape":{"circle":0.15},"mass":0.4,"position":[0.2,2.6]}]})";
+
+TEST_CASE("with resting_method events, a pile's failure names auto and time-stepping",
+          "[resting-method]") {
+    const TempDir tmp;
+    const fs::path scene = tmp.dir / "pile.json";
+    spit(scene, pile_of_five);
+    const fs::path out = tmp.dir / "out.json";
+    const Outcome o = run_tool({"run", scene.string(), "--out", out.string()});
+    require_one_sentence(o);
+    INFO(o.err);
+    CHECK(o.err.rfind(scene.string() + ": ", 0) == 0);
+    CHECK((has(o.err, "(a Zeno cascade)") || has(o.err, "are in resting contact") ||
+           has(o.err, "contact problem")));
+    CHECK(has(o.err, R"(use "resting_method": "auto" or "time-stepping")"));
+    CHECK_FALSE(has(o.err, "seed's"));
+    CHECK_FALSE(fs::exists(out));
+}
+
+// The time a sentence states after `marker` ("at t = "), in seconds.
+double time_after(const std::string& text, const std::string& marker) {
+    const std::size_t at = text.find(marker);
+    REQUIRE(at != std::string::npos);
+    return std::stod(text.substr(at + marker.size()));
+}
+
+TEST_CASE("auto notes once where it leaves events for time-stepping", "[resting-method]") {
+    const TempDir tmp;
+    const fs::path events = tmp.dir / "events.json";
+    spit(events, pile_of_five);
+    const Outcome stopped = run_tool({"run", events.string(), "--out", "-"});
+    INFO(stopped.err);
+    REQUIRE(stopped.exit_code == 2);
+    // The same pile with resting_method left at auto.
+    std::string text = pile_of_five;
+    const std::string method = R"(,"resting_method":"events")";
+    text.erase(text.find(method), method.size());
+    const fs::path automatic = tmp.dir / "auto.json";
+    spit(automatic, text);
+    const fs::path out = tmp.dir / "out.json";
+    const Outcome o = run_tool({"run", automatic.string(), "--out", out.string()});
+    INFO(o.err);
+    CHECK(o.exit_code == 0);
+    const std::string note = "note: " + automatic.string() +
+                             R"(: "resting_method": "auto" switched from events to time-stepping)";
+    CHECK(o.err.rfind(note, 0) == 0);
+    CHECK(o.err.find('\n') == o.err.size() - 1); // once
+    CHECK(has(o.err, R"(set "resting_method": "time-stepping" to use it from the start)"));
+    // The switch is the step (of dt = 1/60 s) in which events stopped: that
+    // step's start, so the failure lies within one dt after it.
+    const double failed = time_after(stopped.err, "at t = ");
+    const double switched = time_after(o.err, "at t = ");
+    CHECK(switched <= failed);
+    CHECK(failed < switched + 0.016666666666666666);
+    // Standard error only: the trajectory is as any run's.
+    CHECK_FALSE(has(slurp(out), "note"));
+    CHECK_FALSE(has(slurp(out), "resting_method"));
+
+    // Time-stepping from the first step is no switch, and says nothing.
+    for (const std::string& solver :
+         {std::string(R"("resting":true,"stepping":"local")"),
+          std::string(R"("resting":true,"resting_method":"time-stepping")")}) {
+        std::string from_start = text;
+        const std::string resting = R"("resting":true)";
+        from_start.replace(from_start.find(resting), resting.size(), solver);
+        spit(automatic, from_start);
+        const Outcome quiet = run_tool({"run", automatic.string(), "--out", out.string()});
+        INFO(solver << ": " << quiet.err);
+        CHECK(quiet.exit_code == 0);
+        CHECK(quiet.err.empty());
+    }
+}
+
+TEST_CASE("a scene that time-steps from its start is not refused for tunnelling",
+          "[resting-method]") {
+    // Under g = 1e9 the ball can reach the ground at sqrt(2 g 0.5) m/s, 316 m
+    // per 0.01 s step against a 2 m thickness: refused without ccd under the
+    // event model (test_refusals.cpp), not under time-stepping.
+    const std::string heavy = R"(,"gravity":[0,-1e9])";
+    const auto outcome = [&](const std::string& solver) {
+        const TempDir tmp;
+        const fs::path scene = tmp.dir / "m.json";
+        spit(scene, disc_scene(solver, 1.0, "0.01", heavy));
+        return run_tool({"run", scene.string(), "--out", (tmp.dir / "out.json").string()});
+    };
+    for (const char* solver : {R"({"resting":true,"resting_method":"time-stepping"})",
+                               R"({"resting":true,"stepping":"local"})"}) {
+        INFO(solver);
+        CHECK_FALSE(has(outcome(solver).err, "tunnelling"));
+    }
+    // auto with world stepping starts with events: still refused.
+    for (const char* solver :
+         {R"({"resting":true})", R"({"resting":true,"resting_method":"events"})"}) {
+        INFO(solver);
+        const Outcome o = outcome(solver);
+        require_one_sentence(o);
+        CHECK(has(o.err, "tunnelling"));
+    }
+}
