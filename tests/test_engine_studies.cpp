@@ -176,7 +176,7 @@ TEST_CASE("An engine the studies do not know, or a setting it cannot vary, is a 
         const test::Outcome taken = run_tool(
             {verb, "head-on", "--root", root, "--engine", "impulse", "--engine-command", "x"});
         CHECK(taken.exit_code == 2);
-        CHECK(taken.err.find("not impulse or box2d, got 'impulse'") != std::string::npos);
+        CHECK(taken.err.find("not impulse, box2d or chipmunk, got 'impulse'") != std::string::npos);
     }
     // The toi method and ccd are the impulse engine's own grid dimensions.
     for (const std::string option : {"--toi", "--ccd"}) {

@@ -272,7 +272,7 @@ std::vector<BadProject> bad_projects() {
          project_with(engines + R"([{"name": "mine", "command": ["x"], "time_limit": "60"}])"),
          "engines[0].time_limit", "must be a number, got \"60\""},
         {"an unknown builtin", project_with(engines + R"([{"name": "b", "builtin": "bullet"}])"),
-         "engines[0].builtin", "must be \"impulse\" or \"box2d\", got \"bullet\""},
+         "engines[0].builtin", "must be \"impulse\", \"box2d\" or \"chipmunk\", got \"bullet\""},
         {"an engine name with a slash",
          project_with(engines + R"([{"name": "a/b", "builtin": "impulse"}])"), "engines[0].name",
          "must be 1 to 64 letters, digits"},

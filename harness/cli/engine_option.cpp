@@ -26,9 +26,10 @@ EngineSpec command_engine(const std::optional<std::string>& name, const std::str
     EngineSpec spec;
     spec.kind = EngineSpec::Kind::external;
     spec.name = name.value_or("external");
-    if (spec.name == "impulse" || spec.name == "box2d" || !is_engine_name(spec.name)) {
+    if (spec.name == "impulse" || spec.name == "box2d" || spec.name == "chipmunk" ||
+        !is_engine_name(spec.name)) {
         throw UsageError("--engine with --engine-command names the external engine: 1 to 64 "
-                         "letters, digits, '.', '_' or '-', not impulse or box2d, got '" +
+                         "letters, digits, '.', '_' or '-', not impulse, box2d or chipmunk, got '" +
                          spec.name + "'");
     }
     std::istringstream words(command);

@@ -59,10 +59,14 @@ EngineSpec engine_named(const Project& project, const std::string& name, bool bu
     if (builtins_too && name == "box2d" && Project::built_with_box2d()) {
         return box2d_engine();
     }
+    // Always named: a build without Chipmunk2D says so when it runs.
+    if (builtins_too && name == "chipmunk") {
+        return chipmunk_engine();
+    }
     std::string known = "the project's engines are " + json_fields::list_of(names);
     if (builtins_too) {
-        known += Project::built_with_box2d() ? ", and the built-in impulse and box2d"
-                                             : ", and the built-in impulse";
+        known += Project::built_with_box2d() ? ", and the built-in impulse, box2d and chipmunk"
+                                             : ", and the built-in impulse and chipmunk";
     }
     throw InputError(project.is_implicit() ? "--engine" : project.file,
                      project.is_implicit() ? "" : "engines",

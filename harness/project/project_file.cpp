@@ -100,20 +100,24 @@ EngineSpec read_engine(const Node& node, const std::string& root, const std::str
     engine.origin = printable_path(file) + ": " + node.path();
     const bool builtin = node.has("builtin"), command = node.has("command");
     if (builtin == command) {
-        node.fail("must have exactly one of \"builtin\" (\"impulse\" or \"box2d\") and "
+        node.fail("must have exactly one of \"builtin\" (\"impulse\", \"box2d\" or "
+                  "\"chipmunk\") and "
                   "\"command\" (the program that speaks docs/engine-protocol.md)");
     }
     if (builtin) {
         const Node kind = node.member("builtin");
         const std::string name = scene_reading::read_string(kind);
-        if (name != "impulse" && name != "box2d") {
-            kind.fail("must be \"impulse\" or \"box2d\", got " + scene_reading::shown(kind));
+        if (name != "impulse" && name != "box2d" && name != "chipmunk") {
+            kind.fail("must be \"impulse\", \"box2d\" or \"chipmunk\", got " +
+                      scene_reading::shown(kind));
         }
         if (node.has("time_limit")) {
             node.member("time_limit")
                 .fail("applies to an engine with a \"command\"; a builtin engine runs in process");
         }
-        engine.kind = name == "impulse" ? EngineSpec::Kind::impulse : EngineSpec::Kind::box2d;
+        engine.kind = name == "impulse" ? EngineSpec::Kind::impulse
+                      : name == "box2d" ? EngineSpec::Kind::box2d
+                                        : EngineSpec::Kind::chipmunk;
         return engine;
     }
     const Node list = node.member("command");
