@@ -200,6 +200,16 @@ TEST_CASE("compare with fake Node references: a replayed column and an unsupport
         }
         CHECK(o.out.find("1 scene: 1 passed, 0 failed") != std::string::npos);
     }
+    SECTION("--box2d-3-substeps N reaches its program and is printed with its command") {
+        const Outcome o = run_tool({"compare", "drop-box", "--root", root, "--with", "box2d-3",
+                                    "--box2d-3-substeps", "2", "--json"},
+                                   {refs.env()});
+        CHECK(o.exit_code == 0);
+        const nlohmann::json command = json_of(o)["scenes"][0]["engines"][1]["command"];
+        REQUIRE(command.size() == 4);
+        CHECK(command[2] == "--substeps");
+        CHECK(command[3] == "2");
+    }
     SECTION("--summary: the summary lines, no table") {
         const Outcome o =
             run_tool({"compare", "drop-box", "--root", root, "--summary"}, {refs.env()});
@@ -371,5 +381,36 @@ TEST_CASE("conform scores every reference beside the engine under test", "[compa
                      {scenes_env, "IMPULSE_REFERENCES_DIR=" + empty.dir.string()});
         CHECK(missing.exit_code == 2);
         CHECK(missing.err.find("install it with: scripts/setup") != std::string::npos);
+    }
+}
+
+TEST_CASE("compare drop-box with the real references: a column each, the impact where physics "
+          "puts it",
+          "[compare-engines]") {
+    // Whatever this machine has (scripts/setup installs them all): each one
+    // available is a column, each other one is skipped with its install command.
+    const Outcome o = run_tool({"compare", "drop-box", "--root", root, "--json"});
+    REQUIRE(o.exit_code == 0);
+    const nlohmann::json doc = json_of(o);
+    const nlohmann::json& scene = doc["scenes"][0];
+    const nlohmann::json& t1 = row_named(scene, "impact 1 time of 'box' (s)");
+    const double exact = std::sqrt(2.0 * h0 / g);
+    for (const auto& r : impulse::harness::reference_engines()) {
+        INFO(r.name);
+        if (!r.available) {
+            bool listed = false;
+            for (const nlohmann::json& s : doc["skipped_references"]) {
+                listed = listed || (s["name"] == r.name && s["install"] == r.install);
+            }
+            CHECK(listed);
+            continue;
+        }
+        REQUIRE(t1["values"].contains(r.name));
+        // Every reference steps at dt and finds the contact once the box
+        // overlaps the ground at the end of a step: at or after the exact
+        // time, within two steps of it.
+        const double t = t1["values"][r.name];
+        CHECK(t >= exact);
+        CHECK(t <= exact + 2.0 * dt);
     }
 }

@@ -64,6 +64,8 @@ shows "unsupported" in its column.
   --engine-command 'PROGRAM ARGS'
                        an engine speaking docs/engine-protocol.md as the engine under study
   --dt S               the time step of every run
+  --box2d-3-substeps N Box2D v3's sub-steps per step (default 4, its own default;
+                       given to its program as --substeps N, so printed in its command)
   --scene-integrator   the engine under study uses the scene's own integrator
   --json               the comparison as JSON (impulse/engine-comparison@1)
   --junit FILE         JUnit XML: a testcase per scene and engine
@@ -102,10 +104,11 @@ void write_runs(const std::string& dir, const std::vector<EngineComparison>& com
 } // namespace
 
 int compare_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-    const Arguments a = parse_arguments(
-        args,
-        {"--with", "--root", "--out", "--junit", "--dt", engine_option, engine_command_option},
-        {"--help", "--json", "--summary", "--scene-integrator", "--quiet"});
+    const Arguments a =
+        parse_arguments(args,
+                        {with_option, "--root", "--out", "--junit", "--dt", "--box2d-3-substeps",
+                         engine_option, engine_command_option},
+                        {"--help", "--json", "--summary", "--scene-integrator", "--quiet"});
     if (a.has_flag("--help")) {
         out << compare_help;
         return exit_ok;
@@ -142,6 +145,12 @@ int compare_verb(const std::vector<std::string>& args, std::ostream& out, std::o
     report.scene_integrator = options.scene_integrator;
     for (const ReferenceEngine& r : report.references) {
         options.references.push_back(r.spec);
+        if (const auto n = a.option("--box2d-3-substeps"); n && r.name == "box2d-3") {
+            // Before the scene's path, which run_engine appends.
+            options.references.back().command.insert(
+                options.references.back().command.end(),
+                {"--substeps", std::to_string(parse_count("--box2d-3-substeps", *n, 1))});
+        }
     }
     const std::vector<std::string> paths = scenes_named(project, a.positional);
     // Everything is computed before anything is written: a bad scene or a

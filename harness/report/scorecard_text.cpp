@@ -144,16 +144,19 @@ std::string engine_tally(const EngineScore& e) {
 
 // Numbers right-aligned in columns as wide as their widest cell; the check's
 // label gets what is left of the 100 columns, and a longer label a line of
-// its own above its numbers.
+// its own above its numbers. `header` names the columns of cells_of from
+// `first` on.
 void write_checks(std::string& out, const SceneScore& scene, const std::vector<Row>& rows,
-                  const std::vector<std::string>& header) {
+                  const std::vector<std::string>& header, std::size_t first = 0) {
     std::vector<std::vector<std::string>> cells;
     std::vector<std::size_t> width(header.size());
     for (std::size_t c = 0; c < header.size(); ++c) {
         width[c] = header[c].size();
     }
     for (const Row& row : rows) {
-        cells.push_back(cells_of(scene, row));
+        const std::vector<std::string> all = cells_of(scene, row);
+        const auto from = all.begin() + static_cast<std::ptrdiff_t>(first);
+        cells.emplace_back(from, from + static_cast<std::ptrdiff_t>(header.size()));
         for (std::size_t c = 0; c < header.size(); ++c) {
             width[c] = std::max(width[c], cells.back()[c].size());
         }
@@ -204,8 +207,17 @@ void write_scene(std::string& out, const Scorecard& card, const SceneScore& scen
     const std::vector<Row> rows = rows_of(scene);
     if (!rows.empty()) {
         std::vector<std::string> header = {"exact", "value", "abs err", "rel err", "allowed", "ok"};
-        header.insert(header.end(), card.references.begin(), card.references.end());
-        write_checks(out, scene, rows, header);
+        // Two reference columns fit the 100 columns beside the engine's six;
+        // more get a table of their own below, the same checks' rows.
+        constexpr std::size_t beside = 2;
+        if (card.references.size() <= beside) {
+            header.insert(header.end(), card.references.begin(), card.references.end());
+            write_checks(out, scene, rows, header);
+        } else {
+            write_checks(out, scene, rows, header);
+            out += "  for scale, each reference's abs err on the same checks:\n";
+            write_checks(out, scene, rows, card.references, header.size());
+        }
     }
     for (const ExpectationResult& r : scene.engines.front().results) {
         if (!r.passed) {
@@ -286,9 +298,11 @@ std::string scorecard_text(const Scorecard& card) {
            "'s; abs err |value - exact|, rel err abs err / |exact|; allowed: the scene's\n"
            "  atol + rtol x scale; ok: abs err within it." +
            (references.empty() ? std::string()
-                               : " " + references +
-                                     ": their abs err on the same\n  check (! outside the "
-                                     "allowance, skip: the engine refused the scene).") +
+                               // The names are in the line above: this one stays 100
+                               // columns wide however many references there are.
+                               : " Each reference's column: its abs err on the\n  same "
+                                 "check (! outside the allowance, skip: the engine refused "
+                                 "the scene).") +
            "\n";
     for (const SceneScore& scene : card.scenes) {
         write_scene(out, card, scene);

@@ -162,6 +162,11 @@ EngineComparison compare_engines(const std::string& path, const CompareOptions& 
         return c;
     }
     c.stopped = studied_fields.stopped;
+    // The sentence run_under_study writes for two runs, said of all of them.
+    if (const std::size_t both = c.stopped.find("both runs are compared");
+        both != std::string::npos) {
+        c.stopped.replace(both, 22, "every run is compared");
+    }
     first.engine = studied->engine;
     first.settings = studied->solver;
     first.run = std::move(*studied);
