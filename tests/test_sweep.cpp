@@ -289,12 +289,32 @@ TEST_CASE("A scene without exact answers is measured against a reference run", "
 TEST_CASE("impulse sweep --json has one entry per grid point; the SVG is well-formed", "[sweep]") {
     const std::string svg_path = "/tmp/impulse-test-sweep-" + std::to_string(::getpid()) + ".svg";
     std::ostringstream out, err;
-    const int code = cli::sweep_verb(
-        {drop_box_path(), "--json", "--dt", "0.016666666666666666,0.008333333333333333",
-         "--integrator", "verlet,euler", "--toi", "bisection,secant", "--toi-tolerance", "1e-9",
-         "--box2d-substeps", "1", "--box2d-iterations", "8/3,30/10", "--repeats", "1", "--svg",
-         svg_path},
-        out, err);
+    const int code = cli::sweep_verb({drop_box_path(),
+                                      "--json",
+                                      "--dt",
+                                      "0.016666666666666666,0.008333333333333333",
+                                      "--integrator",
+                                      "verlet,euler",
+                                      "--toi",
+                                      "bisection,secant",
+                                      "--toi-tolerance",
+                                      "1e-9",
+                                      "--box2d-substeps",
+                                      "1",
+                                      "--box2d-iterations",
+                                      "8/3,30/10",
+                                      "--repeats",
+                                      "1",
+                                      "--svg",
+                                      svg_path,
+                                      "--with",
+#ifdef IMPULSE_WITH_BOX2D
+                                      "box2d-2.4"
+#else
+                                       "none"
+#endif
+                                     },
+                                     out, err);
     REQUIRE(code == 0);
     const nlohmann::json j = nlohmann::json::parse(out.str());
     std::size_t expected = 2 * 2 * 2 * 1;
@@ -323,7 +343,7 @@ TEST_CASE("impulse sweep --json has one entry per grid point; the SVG is well-fo
     CHECK(well_formed_xml(svg.str(), why));
     INFO(why);
     CHECK(svg.str().find("<polyline") != std::string::npos);
-    CHECK(svg.str().find("s/s, log") != std::string::npos);
+    CHECK(svg.str().find("per simulated second (log)") != std::string::npos);
 
     // The SVG text is a function of the result alone.
     SweepResult fixed;
@@ -725,7 +745,7 @@ TEST_CASE("impulse sweep --ccd: JSON and CSV carry the setting; bad values are u
                                            "off,on",
                                            "--repeats",
                                            "1",
-                                           "--no-box2d"};
+                                           "--no-references"};
     {
         std::ostringstream out, err;
         std::vector<std::string> args = grid;
