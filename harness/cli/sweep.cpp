@@ -590,7 +590,7 @@ nlohmann::json to_json(const SweepResult& r) {
             j["ccd"] = p.ccd;
         }
         j["ok"] = p.ok;
-        if (other_engine) {
+        if (other_engine || !p.reference.empty()) {
             j["skipped"] = p.skipped;
             j["cost_source"] = p.ok ? nlohmann::json(sweep_cost_name(p.cost_source)) : nullptr;
         }

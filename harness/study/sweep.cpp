@@ -224,6 +224,12 @@ SweepConfig default_sweep_config(const Scene& scene) {
     config.toi_tolerances = {1e-6, 1e-9, 1e-12};
     config.box2d_substeps = {1, 4};
     config.box2d_iterations = {{8, 3}, {30, 10}};
+    // A pile stepped by time-stepping from its start has no time-of-impact
+    // search: the toi method and tolerance would only repeat each point.
+    if (is_pile_scene(scene) && time_stepping_from_start(scene.solver)) {
+        config.toi_methods = {scene.solver.toi};
+        config.toi_tolerances = {scene.solver.toi_tolerance};
+    }
     return config;
 }
 

@@ -63,7 +63,9 @@ std::vector<std::string> tunnelling_warnings(const Scene& scene, const SweepConf
 // The defaults: dt in {1/30, ..., 1/960} (those not longer than the scene's
 // duration), all four integrators, both time-of-impact methods, toi_tolerance
 // {1e-6, 1e-9, 1e-12}, ccd as the scene sets it; Box2D over the same dts x substeps {1, 4} x
-// iterations {8/3, 30/10}; 5 repeats.
+// iterations {8/3, 30/10}; 5 repeats. On a pile stepped by time-stepping from
+// its start (no time-of-impact search) the scene's own toi method and
+// tolerance only.
 SweepConfig default_sweep_config(const Scene& scene);
 
 // Where a point's cost comes from.
