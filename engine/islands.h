@@ -39,7 +39,8 @@ struct IslandScratch {
 };
 
 // Deterministic: islands are ordered by their smallest body index. Cost is
-// O(links + bodies in links), never O(world), once scratch has the world's size.
+// O(links + T log T) for the T dynamic bodies in links (the log from sorting
+// them), never O(world), once scratch has the world's size.
 void find_islands(const std::vector<Body>& bodies, const std::vector<IslandLink>& links,
                   Islands& out, IslandScratch& scratch);
 

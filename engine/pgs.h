@@ -27,8 +27,6 @@ struct PgsResult {
     double residual = 0.0; // the largest residual after the last sweep
 };
 
-// Scratch kept between calls: per-body entries sized to the world once, reset
-// only where a call touched them, so a call costs O(its island).
 // One point's row of J and its column of M^-1 J^T, with the bodies' slots in
 // dv. Slot 0 stands for every static body: its k and r are zero, so it stays 0.
 struct PgsRow {
@@ -39,6 +37,8 @@ struct PgsRow {
     double kb_x = 0.0, kb_y = 0.0, rb = 0.0;           // B's, with its minus sign
 };
 
+// Scratch kept between calls: per-body entries sized to the world once, reset
+// only where a call touched them, so a call costs O(its island).
 struct PgsScratch {
     std::vector<int> local_of_body; // -1 between calls
     std::vector<double> dv_x;       // per slot: the velocity change M^-1 J^T lambda
@@ -52,8 +52,13 @@ struct PgsScratch {
 // points' a and b are world body indices (their `pair` is not used); q has one
 // entry per point; lambda holds the warm start on entry (zeros if its size
 // differs) and the solution on return. Sweeps go through the points in the
-// order given, then in reverse, alternately. Deterministic: fixed order, only
-// + - * /.
+// order given, then in reverse, alternately; at least one sweep is made. After
+// each sweep one extra pass computes every w_i of the lambda as it stands and
+// the residual from them: that exact residual, never an estimate taken during
+// the sweep, decides convergence and is what PgsResult reports. A sweep costs
+// about 28 flops per point (w_i, the update, the two bodies' dv) and the pass
+// about 14. Negative warm-start entries are taken as 0. Deterministic: fixed
+// order, only + - * /.
 PgsResult solve_pgs(const World& world, const std::vector<ContactPoint>& points,
                     const std::vector<double>& q, std::vector<double>& lambda,
                     const PgsSettings& settings, PgsScratch& scratch);

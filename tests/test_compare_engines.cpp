@@ -325,6 +325,14 @@ TEST_CASE("compare --junit: a testcase per scene and engine, a refusal skipped",
     CHECK(text.find("<skipped message=\"unsupported by rapier: no rapier here\"/>") !=
           std::string::npos);
     CHECK(text.find("failures=\"0\"") != std::string::npos);
+
+    // "-": the XML alone on standard output, the table on standard error.
+    const Outcome piped =
+        run_tool({"compare", "drop-box", "--root", root, "--junit", "-", "--quiet"}, {refs.env()});
+    CHECK(piped.exit_code == 0);
+    CHECK(piped.out.rfind("<?xml", 0) == 0);
+    CHECK(piped.out.find("observable") == std::string::npos);
+    CHECK(piped.err.find("observable") != std::string::npos);
 }
 
 TEST_CASE("compare: a box2d-2.4 row outside the scene's tolerance fails with exit 1",

@@ -230,7 +230,8 @@ TEST_CASE("check_key drops what the run decides, so engines' checks line up", "[
 }
 
 TEST_CASE("conform --engine impulse passes every conformance scene and names each", "[conform]") {
-    const Outcome o = run_tool({"conform", "--engine", "impulse"}, {scenes_env});
+    const Outcome o =
+        run_tool({"conform", "--engine", "impulse", "--with", "box2d-2.4"}, {scenes_env});
     INFO(o.out << o.err);
     REQUIRE(o.exited);
     CHECK(o.exit_code == 0);
@@ -259,8 +260,9 @@ TEST_CASE("conform --json: the documented fields, and drop-box's exact answers f
           "[conform]") {
     const TempDir dir;
     const fs::path json = dir.dir / "card.json";
-    const Outcome o = run_tool(
-        {"conform", "--engine", "impulse", "drop-box", "--json", json.string()}, {scenes_env});
+    const Outcome o = run_tool({"conform", "--engine", "impulse", "--with", "box2d-2.4", "drop-box",
+                                "--json", json.string()},
+                               {scenes_env});
     INFO(o.out << o.err);
     REQUIRE(o.exit_code == 0);
     const nlohmann::json card = scorecard(json);
@@ -321,8 +323,10 @@ TEST_CASE("conform --junit with the impulse engine: well formed, one testcase pe
 }
 
 TEST_CASE("conform's results do not depend on -j", "[conform]") {
-    const Outcome one = run_tool({"conform", "--engine", "impulse", "-j", "1"}, {scenes_env});
-    const Outcome two = run_tool({"conform", "--engine", "impulse", "-j2"}, {scenes_env});
+    const Outcome one = run_tool(
+        {"conform", "--engine", "impulse", "--with", "box2d-2.4", "-j", "1"}, {scenes_env});
+    const Outcome two =
+        run_tool({"conform", "--engine", "impulse", "--with", "box2d-2.4", "-j2"}, {scenes_env});
     CHECK(one.exit_code == 0);
     CHECK(one.out == two.out);
 }
@@ -341,8 +345,8 @@ TEST_CASE("conform finds the shipped scenes: IMPULSE_SCENES_DIR, else the source
     CHECK(listed.out.find("\"contacts\": \"simultaneous\"") != std::string::npos);
     CHECK(listed.out.find("1 of 2 scenes are in the conformance suite") != std::string::npos);
 
-    const Outcome run =
-        run_tool({"conform", "--engine", "impulse"}, {"IMPULSE_SCENES_DIR=" + scenes.string()});
+    const Outcome run = run_tool({"conform", "--engine", "impulse", "--with", "box2d-2.4"},
+                                 {"IMPULSE_SCENES_DIR=" + scenes.string()});
     CHECK(run.exit_code == 0);
     CHECK(run.out.find("on 1 conformance scene from " + scenes.string()) != std::string::npos);
 

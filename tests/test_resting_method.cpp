@@ -1,13 +1,16 @@
-// solver.resting_method through the real tool (issue 14; docs/formats.md, the
-// solver table; docs/refusals-and-progress.md, "Dense contact"): each refusal
-// is one sentence naming the file and the JSON path, exit 2, nothing written
-// and no output file destroyed; resting with local stepping runs; the key is
-// written into a golden's solver block and the normalized scene only when it
-// is not "auto"; a step failure names the setting that carries the scene on;
-// a scene that time-steps from its start is not refused for tunnelling.
+// solver.resting_method (issue 14; docs/formats.md, the solver table;
+// docs/refusals-and-progress.md, "Dense contact"): the loader reads each name
+// and refuses each impossible combination at its key. Through the real tool:
+// each refusal is one sentence naming the file and the JSON path, exit 2,
+// nothing written and no output file destroyed; resting with local stepping
+// runs; the key is written into a golden's solver block and the normalized
+// scene only when it is not "auto"; a step failure names the setting that
+// carries the scene on; auto's switch is noted once; a scene that time-steps
+// from its start is not refused for tunnelling.
 #include "scene.h"
 #include "scene_writer.h"
 #include "support/files.h"
+#include "support/scene_text.h"
 #include "support/tool.h"
 
 #include <catch2/catch.hpp>
@@ -16,6 +19,8 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using impulse::harness::parse_scene;
+using impulse::harness::Scene;
 using namespace impulse::test;
 
 namespace {
@@ -63,7 +68,111 @@ void require_refused(const std::string& scene_text, const std::string& path,
 
 } // namespace
 
-// ---------------------------------------------------------------- refusals at load
+// ---------------------------------------------------------------- the loader (parse_scene)
+
+TEST_CASE("resting_method: auto by default, each name read and written back",
+          "[scene][resting-method]") {
+    using impulse::RestingMethod;
+    using impulse::harness::resting_method_from_name;
+    using impulse::harness::resting_method_name;
+    CHECK(parse_scene(scene_with(R"("solver": {"resting": true},)"), test_file)
+              .solver.resting_method == RestingMethod::automatic);
+    const std::pair<const char*, RestingMethod> names[] = {
+        {"auto", RestingMethod::automatic},
+        {"events", RestingMethod::events},
+        {"time-stepping", RestingMethod::time_stepping}};
+    for (const auto& [name, method] : names) {
+        INFO(name);
+        const Scene scene = parse_scene(
+            scene_with(std::string(R"("solver": {"resting": true, "resting_method": ")") + name +
+                       R"("},)"),
+            test_file);
+        CHECK(scene.solver.resting_method == method);
+        CHECK(std::string(resting_method_name(method)) == name);
+        RestingMethod back = RestingMethod::events;
+        CHECK(resting_method_from_name(name, back));
+        CHECK(back == method);
+    }
+    RestingMethod unchanged = RestingMethod::time_stepping;
+    CHECK_FALSE(resting_method_from_name("time_stepping", unchanged));
+    CHECK(unchanged == RestingMethod::time_stepping);
+}
+
+TEST_CASE("resting with local stepping loads, and is time-stepping from the start",
+          "[scene][resting-method]") {
+    using impulse::harness::time_stepping_from_start;
+    const Scene local =
+        parse_scene(scene_with(R"("solver": {"stepping": "local", "resting": true},)"), test_file);
+    CHECK(local.solver.resting);
+    CHECK(local.solver.stepping == impulse::Stepping::local);
+    CHECK(time_stepping_from_start(local.solver));
+    const Scene explicit_method = parse_scene(
+        scene_with(
+            R"("solver": {"stepping": "local", "resting": true, "resting_method": "time-stepping"},)"),
+        test_file);
+    CHECK(time_stepping_from_start(explicit_method.solver));
+    // world stepping: auto starts with events, and events never time-steps.
+    CHECK_FALSE(time_stepping_from_start(
+        parse_scene(scene_with(R"("solver": {"resting": true},)"), test_file).solver));
+    CHECK_FALSE(time_stepping_from_start(
+        parse_scene(scene_with(R"("solver": {"resting": true, "resting_method": "events"},)"),
+                    test_file)
+            .solver));
+    CHECK(time_stepping_from_start(
+        parse_scene(
+            scene_with(R"("solver": {"resting": true, "resting_method": "time-stepping"},)"),
+            test_file)
+            .solver));
+    // Events and ccd with world stepping are one model, as before.
+    CHECK(parse_scene(scene_with(R"("solver": {"resting": true, "resting_method": "events",
+                                               "ccd": true},)"),
+                      test_file)
+              .solver.ccd);
+}
+
+TEST_CASE("rejected resting_method", "[scene][resting-method]") {
+    SECTION("an unknown method") {
+        require_rejected(
+            scene_with(R"("solver": {"resting": true, "resting_method": "baraff"},)"),
+            "solver.resting_method",
+            "must be \"auto\" (the default), \"events\" or \"time-stepping\", got \"baraff\"");
+    }
+    SECTION("not a string") {
+        require_rejected(scene_with(R"("solver": {"resting": true, "resting_method": true},)"),
+                         "solver.resting_method", "or \"time-stepping\", got true");
+    }
+    SECTION("without resting") {
+        require_rejected(scene_with(R"("solver": {"resting_method": "time-stepping"},)"),
+                         "solver.resting_method", "needs \"resting\": true in the solver block");
+        require_rejected(scene_with(R"("solver": {"resting": false, "resting_method": "auto"},)"),
+                         "solver.resting_method",
+                         "add \"resting\": true or remove \"resting_method\"");
+    }
+    SECTION("events with local stepping") {
+        require_rejected(
+            scene_with(
+                R"("solver": {"stepping": "local", "resting": true, "resting_method": "events"},)"),
+            "solver.resting_method",
+            "\"events\" is not available with \"stepping\": \"local\" (the event model holds "
+            "every resting pair of the world at once); use \"resting_method\": \"auto\" or "
+            "\"time-stepping\" with local stepping, or \"stepping\": \"world\" with events");
+    }
+    SECTION("ccd with time-stepping") {
+        require_rejected(scene_with(R"("solver": {"resting": true, "ccd": true,
+                                                  "resting_method": "time-stepping"},)"),
+                         "solver.ccd",
+                         "is not needed with \"resting_method\": \"time-stepping\": its "
+                         "speculative contacts already cover each step's whole motion, so nothing "
+                         "passes through unseen; remove \"ccd\"");
+    }
+    SECTION("a typo of the key") {
+        require_rejected(scene_with(R"("solver": {"resting": true, "resting_methods": "auto"},)"),
+                         "solver.resting_methods", "unknown key (did you mean resting_method?)");
+    }
+}
+
+// ---------------------------------------------------------------- refusals at load, through the
+// tool
 
 TEST_CASE("run refuses each impossible resting_method with the file and the key",
           "[resting-method]") {
@@ -147,7 +256,6 @@ TEST_CASE("a golden's solver block names resting_method only when it is not auto
 
 TEST_CASE("the normalized scene keeps resting_method, and leaves out auto", "[resting-method]") {
     using impulse::RestingMethod;
-    using impulse::harness::parse_scene;
     using impulse::harness::write_normalized_scene;
     const std::pair<const char*, RestingMethod> methods[] = {
         {"auto", RestingMethod::automatic},
@@ -162,7 +270,7 @@ TEST_CASE("the normalized scene keeps resting_method, and leaves out auto", "[re
         if (method != RestingMethod::automatic) {
             CHECK(has(text, std::string(R"("resting_method": ")") + name + "\""));
         }
-        const impulse::harness::Scene back = parse_scene(text, "normalized");
+        const Scene back = parse_scene(text, "normalized");
         CHECK(back.solver.resting);
         CHECK(back.solver.resting_method == method);
     }
@@ -299,5 +407,7 @@ TEST_CASE("a scene that time-steps from its start is not refused for tunnelling"
         const Outcome o = outcome(solver);
         require_one_sentence(o);
         CHECK(has(o.err, "tunnelling"));
+        CHECK(has(o.err,
+                  R"(set "ccd": true or "resting_method": "time-stepping" in the solver block)"));
     }
 }

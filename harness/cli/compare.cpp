@@ -68,7 +68,8 @@ shows "unsupported" in its column.
                        given to its program as --substeps N, so printed in its command)
   --scene-integrator   the engine under study uses the scene's own integrator
   --json               the comparison as JSON (impulse/engine-comparison@1)
-  --junit FILE         JUnit XML: a testcase per scene and engine
+  --junit FILE         JUnit XML: a testcase per scene and engine (- is standard
+                       output; the table then goes to standard error)
   --out DIR            every run as a trajectory, DIR/SCENE.ENGINE.json, for impulse
                        diff and render (regular files only, never in goldens/)
   --summary            only the summary lines, no tables (scripts/gate)
@@ -175,8 +176,11 @@ int compare_verb(const std::vector<std::string>& args, std::ostream& out, std::o
     if (const auto junit = a.option("--junit")) {
         write_output_file("--junit", *junit, comparison_junit(report), goldens, out);
     }
-    out << (a.has_flag("--json") ? comparison_json(report)
-                                 : comparison_text(report, a.has_flag("--summary")));
+    // JUnit on standard output sends the table to standard error, as conform does.
+    const bool junit_out = a.option("--junit") && is_standard_output(*a.option("--junit"));
+    (junit_out ? err : out) << (a.has_flag("--json")
+                                    ? comparison_json(report)
+                                    : comparison_text(report, a.has_flag("--summary")));
     return comparison_passed(report) ? exit_ok : exit_failed;
 }
 

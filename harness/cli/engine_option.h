@@ -16,7 +16,7 @@ inline constexpr const char* engine_command_option = "--engine-command";
 // --engine-command 'PROGRAM ARGS' (split on spaces, run through the engine
 // protocol in the current folder), named by --engine NAME ("external" when
 // not given); else --engine NAME: the project's engine of that name, or the
-// built-in impulse or box2d; else the project's first engine. Throws
+// built-in impulse, box2d or chipmunk; else the project's first engine. Throws
 // UsageError or InputError (an unknown name, listing the known ones).
 EngineSpec chosen_engine(const Project& project, const Arguments& arguments);
 

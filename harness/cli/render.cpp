@@ -42,7 +42,7 @@ The file's "schema" decides what it is:
                    from the current folder upwards; without one, the scenes
                    are in ./harness/scenes/)
   --engine NAME    run a scene in the project's engine NAME (or the built-in
-                   impulse or box2d)
+                   impulse, box2d or chipmunk)
   --engine-command 'PROGRAM ARGS'
                    run a scene in an engine that speaks docs/engine-protocol.md
   --quiet          no progress bar (drawn on standard error only when that is a

@@ -27,7 +27,7 @@ impulse/trajectory@1 to FILE (atomically) or to standard output.
   --out FILE            write the trajectory here instead of standard output (a
                         regular file, never one in goldens/; - is standard output)
   --engine NAME         the project's engine NAME instead of its first (or the
-                        built-in impulse or box2d)
+                        built-in impulse, box2d or chipmunk)
   --engine-command 'PROGRAM ARGS'
                         an engine that speaks docs/engine-protocol.md, run in the
                         current folder, instead of one in impulse.json

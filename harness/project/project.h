@@ -63,7 +63,7 @@ std::string golden_path(const Project& project, const EngineSpec& engine,
 
 // The engine named `name` (--engine NAME): the project's engine of that name;
 // with `builtins_too` (verbs that run one engine and write no golden: run,
-// render, box2d, sweep, conform) also the built-in impulse or box2d. Else
+// render, box2d, sweep, conform) also the built-in impulse, box2d or chipmunk. Else
 // InputError listing the names there are.
 EngineSpec engine_named(const Project& project, const std::string& name, bool builtins_too);
 // Every engine, or the one --engine names.

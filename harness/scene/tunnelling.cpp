@@ -147,10 +147,15 @@ TunnellingRefusal refusal(const Scene& scene, std::size_t fast, std::size_t slow
                                                  " m/s at t = 0, and gravity adds up to " +
                                                  short_number(gain) + " m/s)"
                                            : " at t = 0";
+    // A resting scene reaching here runs events (time-stepping is exempt), and
+    // time-stepping is one more cure for it.
+    const std::string settings = scene.solver.resting
+                                     ? "\"ccd\": true or \"resting_method\": \"time-stepping\""
+                                     : "\"ccd\": true";
     const std::string cure =
         scene.solver.stepping == Stepping::local
             ? "use dt below " + short_number(safe_dt) + " s (ccd needs \"stepping\": \"world\")"
-            : "set \"ccd\": true in the solver block, or use dt below " + short_number(safe_dt) +
+            : "set " + settings + " in the solver block, or use dt below " + short_number(safe_dt) +
                   " s";
     return TunnellingRefusal{
         body_path(scene, fast),

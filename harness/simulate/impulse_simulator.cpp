@@ -80,8 +80,9 @@ class ImpulseSimulator final : public Simulator {
         const bool time_stepping_before = world_.work.time_stepping_from_step >= 0;
         const std::optional<StepError> error = impulse::step(world_, t0, dt, events_);
         // From the first step is the engine's rule for a pile (docs/engine.md),
-        // not a switch: only a switch after event steps is noted.
-        if (!time_stepping_before && world_.work.time_stepping_from_step > 0 &&
+        // not a switch: only a switch after event steps is noted, and only
+        // when the step it redid went on (a failure is the one sentence then).
+        if (!error && !time_stepping_before && world_.work.time_stepping_from_step > 0 &&
             scene_.solver.resting_method == RestingMethod::automatic) {
             note_switch(t0);
         }
@@ -190,9 +191,11 @@ class ImpulseSimulator final : public Simulator {
         return "use " + dt_and_tolerance();
     }
 
-    std::string unsolved(const std::string& pair, const std::string& at, ContactModel model) const {
+    // `around`: " around 'a' and 'b'", or "" when the engine named no pair.
+    std::string unsolved(const std::string& around, const std::string& at,
+                         ContactModel model) const {
         if (model == ContactModel::time_stepping) {
-            return "the contact problem of the island around " + pair + " at " + at +
+            return "the contact problem of the island" + around + " at " + at +
                    " has no solution the solver could find (docs/engine.md, \"Dense contact\"); "
                    "use " +
                    dt_and_tolerance();
@@ -207,9 +210,8 @@ class ImpulseSimulator final : public Simulator {
         if (simultaneous) {
             cure += "contacts \"single\", ";
         }
-        return std::string("the ") + (simultaneous ? "simultaneous " : "") +
-               "contact problem around " + pair + " at " + at +
-               " has no solution the solver could find (docs/engine.md, \"" +
+        return std::string("the ") + (simultaneous ? "simultaneous " : "") + "contact problem" +
+               around + " at " + at + " has no solution the solver could find (docs/engine.md, \"" +
                (simultaneous ? "Simultaneous contact" : "Resting contact") + "\"); use " + cure +
                dt_and_tolerance();
     }
@@ -247,7 +249,9 @@ class ImpulseSimulator final : public Simulator {
                           "step)") +
                    "; " + carry_on(model);
         case StepFailure::contact_problem_unsolved:
-            return unsolved(a + " and " + b, at, model);
+            return unsolved(error.body_a >= 0 && error.body_b >= 0 ? " around " + a + " and " + b
+                                                                   : std::string(),
+                            at, model);
         case StepFailure::sweep_not_converged:
             return "the swept test between " + a + " and " + b + " at " + at +
                    " needed more than " + std::to_string(scene_.solver.max_search_iterations) +
@@ -260,9 +264,8 @@ class ImpulseSimulator final : public Simulator {
     // Once per run, when "auto" leaves the event model for time-stepping in
     // the middle of a run: the trajectory then differs from an events run from
     // that step on, and a user comparing the two should know where. Standard
-    // error only, so no output file and
-    // no stdout changes; on a terminal the progress bar's line is erased
-    // first (it is redrawn below).
+    // error only, so no output file and no stdout changes; on a terminal the
+    // progress bar's line is erased first (it is redrawn below).
     void note_switch(double t) const {
         std::string text = "note: " + scene_.file +
                            ": \"resting_method\": \"auto\" switched from events to "
