@@ -27,48 +27,6 @@ namespace impulse::harness {
 
 namespace {
 
-bool is_exact_kind(Expectation::Kind kind) {
-    return kind == Expectation::Kind::drop || kind == Expectation::Kind::corner_impact ||
-           kind == Expectation::Kind::head_on;
-}
-
-double relative(double actual, double expected) {
-    const double off = std::abs(actual - expected);
-    if (!std::isfinite(off)) {
-        return std::numeric_limits<double>::infinity();
-    }
-    return off / std::max(std::abs(expected), sweep_error_floor);
-}
-
-// The largest relative error over the exact-answer expectations.
-double error_against_exact(const Scene& exact_only, const Trajectory& trajectory) {
-    double worst = 0.0;
-    for (const ExpectationResult& r : evaluate_expectations(exact_only, trajectory)) {
-        // A check without numbers (a missing impact) has nothing to measure:
-        // the run failed to produce the answer at all.
-        if (!r.passed && r.expected == 0.0 && r.actual == 0.0) {
-            return std::numeric_limits<double>::infinity();
-        }
-        worst = std::max(worst, relative(r.actual, r.expected));
-    }
-    return worst;
-}
-
-// The largest relative difference of the final frame's positions, angles and
-// velocities (every column but t).
-double error_against_reference(const Trajectory& reference, const Trajectory& trajectory) {
-    if (trajectory.frames.empty() || reference.frames.empty()) {
-        return std::numeric_limits<double>::infinity();
-    }
-    const std::vector<double>& a = trajectory.frames.back();
-    const std::vector<double>& r = reference.frames.back();
-    double worst = 0.0;
-    for (std::size_t i = 1; i < a.size() && i < r.size(); ++i) {
-        worst = std::max(worst, relative(a[i], r[i]));
-    }
-    return worst;
-}
-
 double median_of(std::vector<double> values) {
     std::sort(values.begin(), values.end());
     const std::size_t n = values.size();
@@ -404,19 +362,6 @@ EngineSpec reference_spec(const SweepConfig& config, const SweepPoint& point) {
         }
     }
     throw InputError("", "", "the sweep has no reference named " + point.reference);
-}
-
-// The scene with only its exact-answer expectations: what the error is
-// measured against when it declares any.
-Scene with_exact_expectations_only(const Scene& scene) {
-    Scene exact_only = scene;
-    exact_only.expectations.clear();
-    for (const Expectation& x : scene.expectations) {
-        if (is_exact_kind(x.kind)) {
-            exact_only.expectations.push_back(x);
-        }
-    }
-    return exact_only;
 }
 
 // Another engine's reference: itself at the finest dt / 4, with the scene's

@@ -1,6 +1,7 @@
-// What the sweep measures on a pile (a scene without exact answers whose
-// expectations are those of dense contact): no answer to be near, so the
-// errors are the two invariants a pile must keep, measured on the run.
+// What the sweep measures a run's error by: the scene's exact answers, a
+// reference run, or on a pile (a scene without exact answers whose
+// expectations are those of dense contact) the two invariants a pile must
+// keep, measured on the run, since there is no answer to be near.
 #pragma once
 
 #include "scene.h"
@@ -23,5 +24,18 @@ double deepest_overlap_over_run(const Scene& scene, const Trajectory& trajectory
 // its terms' magnitudes, as energy-non-increasing judges it). 0 when energy
 // never rises; infinity when it is not finite.
 double energy_gain_over_run(const Scene& scene, const Trajectory& trajectory);
+
+// The scene with only its exact-answer expectations (drop, corner-impact,
+// head-on): what the error is measured against when it declares any.
+Scene with_exact_expectations_only(const Scene& scene);
+
+// The largest |actual - expected| / max(|expected|, sweep_error_floor) over
+// the exact-answer expectations of `exact_only`; infinity when a check has no
+// numbers (a missing impact: the run did not produce the answer at all).
+double error_against_exact(const Scene& exact_only, const Trajectory& trajectory);
+
+// The largest relative difference of the final frame's positions, angles and
+// velocities (every column but t); infinity when either has no frame.
+double error_against_reference(const Trajectory& reference, const Trajectory& trajectory);
 
 } // namespace impulse::harness
