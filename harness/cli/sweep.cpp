@@ -85,7 +85,8 @@ the cost is wall-clock seconds per body-step at the scene's dt.
                             scene's own setting); not with "stepping": "local"
   --box2d-substeps LIST     Box2D steps per scene step (default 1,4)
   --box2d-iterations LIST   velocity/position iterations (default 8/3,30/10)
-  --no-box2d                no Box2D 2.4.1 points
+  --no-box2d                impulse points only: no reference at all, unless --with
+                            names some (then every one named but Box2D 2.4.1)
   --with LIST               the references, comma-separated (box2d-2.4, box2d-3,
                             chipmunk, rapier), or none (default: every one on this
                             machine; the others are listed as skipped with the
@@ -239,6 +240,11 @@ bool choose_references(const Arguments& a, SweepConfig& config, std::ostream& er
         if (a.option(with_option)) {
             throw UsageError("--with and --no-references contradict each other: give one");
         }
+        config.box2d = false;
+        return true;
+    }
+    // --no-box2d alone has always meant impulse's points only.
+    if (a.has_flag("--no-box2d") && !a.option(with_option)) {
         config.box2d = false;
         return true;
     }

@@ -223,9 +223,9 @@ std::string cost_axis_name(const SweepResult& r) {
         return "cost: wall-clock seconds per body-step (log)";
     }
     // Another engine's cost is what it reports or the process's wall time.
-    return (r.cost_source.empty() ? std::string("cost: wall-clock time")
+    return (r.cost_source.empty() ? std::string("cost: wall time")
                                   : r.cost_source.substr(0, r.cost_source.find(';'))) +
-           " per simulated second (log)";
+           " per simulated second (s/s, log)";
 }
 
 std::string error_axis_name(const SweepResult& r, SweepAxis axis) {
