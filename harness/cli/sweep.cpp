@@ -11,9 +11,12 @@
 #include "output_path.h"
 #include "progress.h"
 #include "project_options.h"
+#include "reference_option.h"
 #include "render.h"
 #include "sweep_csv.h"
 #include "sweep_plot.h"
+#include "sweep_text.h"
+#include "sweep_verdict.h"
 #include "text.h"
 
 #include <algorithm>
@@ -50,7 +53,9 @@ settings (time step x sub-steps x iterations) and measures each point's
          iterations
 
 and marks each method family's Pareto front (impulse per integrator/toi
-method, "+ccd" a family of its own, and Box2D). A grid point the engine
+method, "+ccd" a family of its own, Box2D 2.4.1, and every other reference
+engine on this machine: Box2D v3, Chipmunk2D, Rapier2D, each over the grid's
+time steps and, for Box2D v3 and Rapier, --reference-substeps). A grid point the engine
 refuses (a Zeno cascade, a resting contact) is reported as failed with its
 reason. SCENE is a path or the name of a canonical scene under
 ROOT/harness/scenes/.
@@ -60,7 +65,17 @@ Box2D, judged on this run's wall-clock costs: at the cost of Box2D at dt 1/60,
 1 sub-step, 8/3 iterations or less, an impulse error at least 1e6 times smaller
 (with how many times cheaper the chosen impulse point is, to show how near
 noise is to flipping it); and the impulse points' Pareto front (all families
-together) dominating every point of Box2D's.
+together) dominating every point of Box2D's. Then one verdict per reference:
+"impulse at Box2D 2.4.1's cost: N orders of magnitude more accurate", comparing
+the reference's point nearest 60 Hz (at its default settings) with the most
+accurate impulse point that costs no more, and whether impulse's front
+dominates the reference's.
+
+On a pile (a scene without exact answers whose expectations include
+max-overlap, at-rest or energy-non-increasing) the error is the deepest
+overlap of any pair in any frame (metres), a second axis is the largest
+energy gained over the run (relative to the energy's scale at t = 0), and
+the cost is wall-clock seconds per body-step at the scene's dt.
 
   --dt LIST                 time steps in seconds (default 1/30,1/60,...,1/960)
   --integrator LIST         euler,symplectic-euler,verlet,rk4 (default all)
@@ -70,7 +85,15 @@ together) dominating every point of Box2D's.
                             scene's own setting); not with "stepping": "local"
   --box2d-substeps LIST     Box2D steps per scene step (default 1,4)
   --box2d-iterations LIST   velocity/position iterations (default 8/3,30/10)
-  --no-box2d                impulse points only
+  --no-box2d                impulse points only: no reference at all, unless --with
+                            names some (then every one named but Box2D 2.4.1)
+  --with LIST               the references, comma-separated (box2d-2.4, box2d-3,
+                            chipmunk, rapier), or none (default: every one on this
+                            machine; the others are listed as skipped with the
+                            command that installs them)
+  --no-references           impulse points only (the same as --with none)
+  --reference-substeps LIST Box2D v3's sub-steps and Rapier's solver iterations
+                            (--substeps N of their programs; default 1,4)
   --engine NAME             the engine under study (default: the project's first, impulse
                             without a project file); for an engine
                             other than impulse the grid is --dt x --integrator x
@@ -188,207 +211,71 @@ SweepConfig config_from(const Arguments& a, const Scene& scene, const Project& p
     if (a.has_flag("--no-box2d")) {
         config.box2d = false;
     }
+
     if (const auto n = a.option("--repeats")) {
         config.repeats = whole_number("--repeats", *n);
     }
     return config;
 }
 
-std::string sci(double value, int digits = 2) {
-    if (std::isinf(value)) {
-        return "inf";
-    }
-    if (std::isnan(value)) {
-        return "-";
-    }
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.*e", digits, value);
-    return buffer;
-}
-
-std::string settings_of(const SweepPoint& p) {
-    if (p.box2d) {
-        return "sub " + std::to_string(p.substeps) + ", it " +
-               std::to_string(p.velocity_iterations) + "/" + std::to_string(p.position_iterations);
-    }
-    return "tol " + sci(p.toi_tolerance, 0);
-}
-
-std::string dt_text(double dt) {
-    const double hz = 1.0 / dt;
-    if (std::abs(hz - std::round(hz)) < 1e-9 * hz) {
-        return "1/" + fixed_text(std::round(hz), 0);
-    }
-    return format_double(dt);
-}
-
-// "Box2D 1/60 sub 1, it 8/3", "verlet/secant 1/30 tol 1e-12",
-// "verlet/secant+ccd 1/30 tol 1e-12", "my-engine verlet 1/30 tol 1e-12".
-std::string point_name(const SweepPoint& p) {
-    const bool own = p.kind == EngineSpec::Kind::impulse;
-    const std::string method = p.box2d ? std::string("Box2D")
-                               : !own  ? p.family
-                                       : std::string(integrator_name(p.integrator)) + "/" +
-                                            toi_method_name(p.toi) + (p.ccd ? "+ccd" : "");
-    return method + " " + dt_text(p.dt) + " " + settings_of(p);
-}
-
-std::string error_and_cost(const SweepPoint& p) {
-    return "error " + sci(p.error) + " at " + sci(p.cost_median) + " s/s";
-}
-
-// Few digits where noise could matter (near 1x), none where it cannot.
-std::string times(double ratio) {
-    if (!std::isfinite(ratio) || ratio >= 1e4) {
-        return sci(ratio, 1) + "x";
-    }
-    return fixed_text(ratio, ratio < 10.0 ? 1 : 0) + "x";
-}
-
-// Why no target was measured, or empty when they were.
-std::string targets_not_measured(const SweepResult& r, const SweepTargets& t) {
-    if (t.measured) {
-        return "";
-    }
-    const bool any_box2d =
-        std::any_of(r.points.begin(), r.points.end(), [](const SweepPoint& p) { return p.box2d; });
-    return any_box2d ? "not measured (every Box2D point failed)" : "not measured (no Box2D points)";
-}
-
-// Target 1 in one sentence.
-std::string error_target_text(const SweepResult& r, const SweepTargets& t) {
-    std::string text = "error at Box2D's 60 Hz cost: ";
-    if (!t.box2d_60hz_found) {
-        return text + "not measured (the grid has no Box2D point at dt 1/60, " +
-               std::to_string(target_box2d_substeps) + " sub-step, " +
-               std::to_string(target_box2d_velocity_iterations) + "/" +
-               std::to_string(target_box2d_position_iterations) + " iterations)";
-    }
-    const SweepPoint& b = r.points[t.box2d_60hz];
-    if (!t.error_target_measured) {
-        return text + "not measured (" + point_name(b) + " failed: " + b.failure + ")";
-    }
-    text += point_name(b) + ": " + error_and_cost(b) + "; ";
-    const std::string target = " (target >= " + sci(target_error_ratio, 0) + ")";
-    if (!t.impulse_found) {
-        return text + "no " + r.engine + " point costs that little: not met" + target;
-    }
-    const SweepPoint& p = r.points[t.best_impulse];
-    text += "best " + r.engine + " at <= that cost: " + point_name(p) + ", ";
-    if (t.impulse_error_zero) {
-        text += "error 0 (below the floor " + sci(sweep_error_floor, 0) + ", taken as it) at " +
-                sci(p.cost_median) + " s/s";
-    } else {
-        text += error_and_cost(p);
-    }
-    text += " (" + times(t.cost_margin) +
-            " cheaper): " + (t.impulse_error_zero ? "at least " : "") + sci(t.error_ratio, 1) +
-            " times smaller: " + (t.error_target_met ? "met" : "not met") + target;
-    return text;
-}
-
-// Target 2 in one sentence.
-std::string front_target_text(const SweepResult& r, const SweepTargets& t) {
-    std::string text = "Pareto front: " + r.engine + "'s front dominates ";
-    if (t.front_target_met) {
-        return text +
-               (t.box2d_front_size == 1
-                    ? std::string("Box2D's only front point")
-                    : "all " + std::to_string(t.box2d_front_size) + " of Box2D's front points") +
-               ": met";
-    }
-    const SweepPoint& b = r.points[t.first_undominated];
-    return text + std::to_string(t.box2d_front_dominated) + " of Box2D's " +
-           std::to_string(t.box2d_front_size) + " front point" +
-           (t.box2d_front_size == 1 ? "" : "s") + "; not " + point_name(b) + " (" +
-           error_and_cost(b) + "): not met";
-}
-
-void write_targets(const SweepResult& r, std::ostream& out) {
-    const SweepTargets t = evaluate_targets(r);
-    if (!t.measured) {
-        out << "targets: " << targets_not_measured(r, t) << "\n";
-        return;
-    }
-    out << "targets (wall-clock costs of this run; noisy):\n";
-    out << "  " << error_target_text(r, t) << "\n";
-    out << "  " << front_target_text(r, t) << "\n";
-}
-
-// How many points were measured, failed and skipped; each reason for a skip
-// once, with how many points it skipped.
-void write_counts(const SweepResult& r, std::ostream& out) {
-    std::size_t failed = 0;
-    std::vector<std::pair<std::string, std::size_t>> skips; // in the order first met
-    for (const SweepPoint& p : r.points) {
-        failed += p.ok || p.skipped ? 0 : 1;
-        if (p.skipped) {
-            const auto same = std::find_if(skips.begin(), skips.end(),
-                                           [&](const auto& s) { return s.first == p.failure; });
-            if (same == skips.end()) {
-                skips.emplace_back(p.failure, 1);
-            } else {
-                ++same->second;
-            }
+// The Node references' --substeps grid (Box2D v3's sub-steps, Rapier's
+// solver iterations): 1 and Box2D v3's default 4 unless given.
+std::vector<int> reference_substeps(const Arguments& a) {
+    std::vector<int> substeps{1, 4};
+    if (const auto list = a.option("--reference-substeps")) {
+        substeps.clear();
+        for (const std::string& item : comma_list(*list)) {
+            substeps.push_back(whole_number("--reference-substeps", item));
         }
     }
-    std::size_t skipped = 0;
-    for (const auto& [reason, n] : skips) {
-        skipped += n;
-    }
-    out << "\n"
-        << r.points.size() - failed - skipped << " points measured, " << failed << " failed"
-        << (skipped > 0 ? ", " + std::to_string(skipped) + " skipped" : "") << "\n";
-    for (const auto& [reason, n] : skips) {
-        out << "skipped " << plural(n, "point", "points") << ": " << reason << "\n";
-    }
-    out << "\n";
+    return substeps;
 }
 
-void write_table(const SweepResult& r, std::ostream& out) {
-    out << "sweep: " << r.scene << ", " << r.points.size() << " grid points, " << r.repeats
-        << " repeats each, " << format_double(r.simulated_duration) << " s simulated\n";
-    out << "error " << r.error_reference << "\n";
-    if (r.cost_source.empty()) {
-        out << "cost: seconds of wall time per simulated second (median +- spread); * on its "
-               "family's Pareto front\n\n";
-    } else {
-        // Box2D's points are timed in process whatever the engine's cost is.
-        const bool any_box2d = std::any_of(r.points.begin(), r.points.end(),
-                                           [](const SweepPoint& p) { return p.box2d; });
-        out << r.cost_source << ", in seconds per simulated second (median +- spread)"
-            << (any_box2d ? "; Box2D's points: wall time in process" : "")
-            << "; * on its family's Pareto front\n\n";
+// The references beside the engine under study (reference_option.h): Box2D
+// 2.4.1 keeps its in-process grid (--box2d-substeps, --box2d-iterations),
+// every other one gets its own front. False: a requested reference is not on
+// this machine (said on err).
+bool choose_references(const Arguments& a, SweepConfig& config, std::ostream& err) {
+    if (a.has_flag("--no-references")) {
+        if (a.option(with_option)) {
+            throw UsageError("--with and --no-references contradict each other: give one");
+        }
+        config.box2d = false;
+        return true;
     }
-    // As wide as the longest family ("+ccd" can take one past the usual 36).
-    std::size_t method_width = 36;
-    for (const SweepPoint& p : r.points) {
-        method_width = std::max(method_width, p.family.size() + 2);
+    // --no-box2d alone has always meant impulse's points only.
+    if (a.has_flag("--no-box2d") && !a.option(with_option)) {
+        config.box2d = false;
+        return true;
     }
-    out << padded("method", method_width) << padded("dt", 7) << padded("settings", 17)
-        << padded("error", 10, true) << padded("cost", 11, true) << padded("+-", 10, true)
-        << padded("steps", 9, true) << padded("narrow", 10, true) << padded("toi_it", 9, true)
-        << "\n";
-    for (const SweepPoint& p : r.points) {
-        out << padded(p.family, method_width) << padded(dt_text(p.dt), 7)
-            << padded(settings_of(p), 17);
-        if (!p.ok) {
-            out << (p.skipped ? std::string("  skipped") : "  FAILED: " + p.failure) << "\n";
+    const std::optional<ReferenceChoice> chosen =
+        chosen_references(a.option(with_option), "", "sweep", err);
+    if (!chosen) {
+        return false;
+    }
+    for (const std::string& note : chosen->notes) {
+        err << "sweep: " << note << "\n";
+    }
+    for (const ReferenceEngine& r : chosen->skipped) {
+        err << "sweep: skipped " << unavailable_sentence(r) << "\n";
+    }
+    bool box2d = false;
+    for (const ReferenceEngine& r : chosen->used) {
+        if (r.spec.kind == EngineSpec::Kind::box2d) {
+            box2d = true;
             continue;
         }
-        out << padded(sci(p.error), 10, true) << padded(sci(p.cost_median), 11, true)
-            << padded(sci(p.cost_spread, 1), 10, true)
-            << padded(p.work_counted ? std::to_string(p.work.steps) : "-", 9, true);
-        if (p.box2d || p.kind != EngineSpec::Kind::impulse) {
-            out << padded("-", 10, true) << padded("-", 9, true);
-        } else {
-            out << padded(std::to_string(p.work.narrow_phase_queries), 10, true)
-                << padded(std::to_string(p.work.toi_iterations), 9, true);
+        SweepReference reference;
+        reference.name = r.name;
+        reference.title = r.title.substr(0, r.title.find(" ("));
+        reference.spec = r.spec;
+        if (r.spec.kind == EngineSpec::Kind::external) {
+            reference.substeps = reference_substeps(a);
         }
-        out << (p.on_front ? " *" : "") << (p.work_identical ? "" : " (work varied!)") << "\n";
+        config.references.push_back(reference);
     }
-    write_counts(r, out);
-    write_targets(r, out);
+    config.box2d = config.box2d && box2d;
+    return true;
 }
 
 nlohmann::json number_or_null(double value) {
@@ -403,7 +290,7 @@ nlohmann::json index_or_null(bool found, std::size_t index) {
 nlohmann::json targets_json(const SweepResult& r) {
     const SweepTargets t = evaluate_targets(r);
     if (!t.measured) {
-        return {{"measured", false}, {"verdict", targets_not_measured(r, t)}};
+        return {{"measured", false}, {"verdict", sweep_targets_not_measured(r, t)}};
     }
     const bool have_impulse = t.error_target_measured && t.impulse_found;
     nlohmann::json error_target = {
@@ -415,17 +302,40 @@ nlohmann::json targets_json(const SweepResult& r) {
         {"cost_margin", have_impulse ? number_or_null(t.cost_margin) : nullptr},
         {"required_ratio", target_error_ratio},
         {"met", t.error_target_met},
-        {"verdict", error_target_text(r, t)}};
+        {"verdict", sweep_error_target_text(r, t)}};
     nlohmann::json front_target = {
         {"box2d_front_points", t.box2d_front_size},
         {"dominated", t.box2d_front_dominated},
         {"first_undominated", index_or_null(t.undominated_found, t.first_undominated)},
         {"met", t.front_target_met},
-        {"verdict", front_target_text(r, t)}};
+        {"verdict", sweep_front_target_text(r, t)}};
     return {{"measured", true},
             {"costs", "wall-clock medians of this run; noisy"},
             {"error_at_box2d_60hz_cost", std::move(error_target)},
             {"pareto_front", std::move(front_target)}};
+}
+
+// Every reference's verdict, with indices into "points".
+nlohmann::json verdicts_json(const SweepResult& r) {
+    nlohmann::json all = nlohmann::json::array();
+    for (const SweepAxis axis : sweep_verdict_axes(r)) {
+        for (const ReferenceVerdict& v : reference_verdicts(r, axis)) {
+            all.push_back({{"reference", v.family},
+                           {"title", v.title},
+                           {"axis", axis == SweepAxis::energy ? "energy"
+                                    : r.pile                  ? "overlap"
+                                                              : "error"},
+                           {"reference_point", index_or_null(v.measured, v.reference_point)},
+                           {"impulse_point", index_or_null(v.found, v.impulse_point)},
+                           {"orders_of_magnitude", v.found ? number_or_null(v.orders) : nullptr},
+                           {"front_points", v.front_size},
+                           {"front_points_dominated", v.front_dominated},
+                           {"front_dominates", v.dominates()},
+                           {"headline", verdict_headline(r, v, axis)},
+                           {"verdict", verdict_sentence(r, v, axis)}});
+        }
+    }
+    return all;
 }
 
 nlohmann::json to_json(const SweepResult& r) {
@@ -436,7 +346,10 @@ nlohmann::json to_json(const SweepResult& r) {
         j["engine"] = p.box2d ? "box2d" : p.engine;
         j["family"] = p.family;
         j["dt"] = p.dt;
-        if (p.box2d) {
+        if (!p.reference.empty()) {
+            j["engine"] = p.reference;
+            j["substeps"] = p.substeps > 0 ? nlohmann::json(p.substeps) : nlohmann::json(nullptr);
+        } else if (p.box2d) {
             j["substeps"] = p.substeps;
             j["velocity_iterations"] = p.velocity_iterations;
             j["position_iterations"] = p.position_iterations;
@@ -450,7 +363,7 @@ nlohmann::json to_json(const SweepResult& r) {
             j["ccd"] = p.ccd;
         }
         j["ok"] = p.ok;
-        if (other_engine) {
+        if (other_engine || !p.reference.empty()) {
             j["skipped"] = p.skipped;
             j["cost_source"] = p.ok ? nlohmann::json(sweep_cost_name(p.cost_source)) : nullptr;
         }
@@ -458,6 +371,9 @@ nlohmann::json to_json(const SweepResult& r) {
             j["failure"] = p.failure;
         }
         j["error"] = p.ok ? number_or_null(p.error) : nullptr;
+        if (r.pile) {
+            j["energy_error"] = p.ok ? number_or_null(p.energy_error) : nullptr;
+        }
         j["cost_median"] = p.ok ? number_or_null(p.cost_median) : nullptr;
         j["cost_spread"] = p.ok ? number_or_null(p.cost_spread) : nullptr;
         j["work"] = {{"steps", p.work.steps},
@@ -476,7 +392,9 @@ nlohmann::json to_json(const SweepResult& r) {
                                {"against_exact", r.against_exact},
                                {"simulated_duration", r.simulated_duration},
                                {"repeats", r.repeats},
-                               {"cost_unit", "seconds per simulated second"},
+                               {"cost_unit", r.cost_unit},
+                               {"pile", r.pile},
+                               {"verdicts", verdicts_json(r)},
                                {"points", std::move(points)},
                                {"targets", targets_json(r)}};
     if (other_engine) {
@@ -489,12 +407,12 @@ nlohmann::json to_json(const SweepResult& r) {
 } // namespace
 
 int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-    const Arguments a =
-        parse_arguments(args,
-                        {"--dt", "--integrator", "--toi", "--toi-tolerance", "--box2d-substeps",
-                         "--box2d-iterations", "--ccd", "--repeats", "--svg", "--root",
-                         engine_option, engine_command_option},
-                        {"--help", "--json", "--csv", "--no-box2d", "--progress", "--quiet"});
+    const Arguments a = parse_arguments(
+        args,
+        {"--dt", "--integrator", "--toi", "--toi-tolerance", "--box2d-substeps",
+         "--box2d-iterations", "--ccd", "--repeats", "--svg", "--root", "--reference-substeps",
+         with_option, engine_option, engine_command_option},
+        {"--help", "--json", "--csv", "--no-box2d", "--no-references", "--progress", "--quiet"});
     if (a.has_flag("--help")) {
         out << sweep_help;
         return exit_ok;
@@ -514,7 +432,10 @@ int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
     for (const std::string& warning : scene.warnings) {
         err << "warning: " << warning << "\n";
     }
-    const SweepConfig config = config_from(a, scene, project);
+    SweepConfig config = config_from(a, scene, project);
+    if (!choose_references(a, config, err)) {
+        return exit_bad_input;
+    }
     for (const std::string& warning : tunnelling_warnings(scene, config)) {
         err << "warning: " << warning << "\n";
     }
@@ -548,7 +469,7 @@ int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
     } else if (a.has_flag("--csv")) {
         out << sweep_csv(result);
     } else {
-        write_table(result, is_standard_output(svg) ? err : out);
+        write_sweep_table(result, is_standard_output(svg) ? err : out);
     }
     return exit_ok;
 }

@@ -34,13 +34,15 @@ std::string sweep_csv(const SweepResult& r) {
     out << "engine,family,dt,integrator,toi,toi_tolerance,ccd,substeps,velocity_iterations,"
            "position_iterations,ok,error,cost_median,cost_spread,steps,narrow_phase_queries,"
            "toi_iterations,collisions,on_front,failure"
-        << (other_engine ? ",cost_source" : "") << "\n";
+        << (other_engine ? ",cost_source" : "") << (r.pile ? ",energy_error" : "") << "\n";
     for (const SweepPoint& p : r.points) {
         out << (p.box2d ? std::string("box2d") : csv_field(p.engine)) << "," << csv_field(p.family)
             << "," << format_double(p.dt) << ",";
         if (p.box2d) {
             out << ",,,," << p.substeps << "," << p.velocity_iterations << ","
                 << p.position_iterations << ",";
+        } else if (!p.reference.empty()) {
+            out << ",,,," << (p.substeps > 0 ? std::to_string(p.substeps) : "") << ",,,";
         } else if (p.kind != EngineSpec::Kind::impulse) {
             out << integrator_name(p.integrator) << ",," << format_double(p.toi_tolerance)
                 << ",,,,,";
@@ -56,7 +58,7 @@ std::string sweep_csv(const SweepResult& r) {
             << p.work.collisions << "," << (p.on_front ? "true" : "false") << ","
             << csv_field(p.failure)
             << (other_engine ? std::string(",") + (p.ok ? sweep_cost_name(p.cost_source) : "") : "")
-            << "\n";
+            << (r.pile ? "," + (p.ok ? csv_number(p.energy_error) : std::string()) : "") << "\n";
     }
     return out.str();
 }

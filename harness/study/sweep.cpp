@@ -8,6 +8,7 @@
 #include "run.h"
 #include "simulator.h"
 #include "single_precision.h"
+#include "sweep_measures.h"
 #include "text.h"
 #include "tunnelling.h"
 #ifdef IMPULSE_WITH_BOX2D
@@ -25,48 +26,6 @@
 namespace impulse::harness {
 
 namespace {
-
-bool is_exact_kind(Expectation::Kind kind) {
-    return kind == Expectation::Kind::drop || kind == Expectation::Kind::corner_impact ||
-           kind == Expectation::Kind::head_on;
-}
-
-double relative(double actual, double expected) {
-    const double off = std::abs(actual - expected);
-    if (!std::isfinite(off)) {
-        return std::numeric_limits<double>::infinity();
-    }
-    return off / std::max(std::abs(expected), sweep_error_floor);
-}
-
-// The largest relative error over the exact-answer expectations.
-double error_against_exact(const Scene& exact_only, const Trajectory& trajectory) {
-    double worst = 0.0;
-    for (const ExpectationResult& r : evaluate_expectations(exact_only, trajectory)) {
-        // A check without numbers (a missing impact) has nothing to measure:
-        // the run failed to produce the answer at all.
-        if (!r.passed && r.expected == 0.0 && r.actual == 0.0) {
-            return std::numeric_limits<double>::infinity();
-        }
-        worst = std::max(worst, relative(r.actual, r.expected));
-    }
-    return worst;
-}
-
-// The largest relative difference of the final frame's positions, angles and
-// velocities (every column but t).
-double error_against_reference(const Trajectory& reference, const Trajectory& trajectory) {
-    if (trajectory.frames.empty() || reference.frames.empty()) {
-        return std::numeric_limits<double>::infinity();
-    }
-    const std::vector<double>& a = trajectory.frames.back();
-    const std::vector<double>& r = reference.frames.back();
-    double worst = 0.0;
-    for (std::size_t i = 1; i < a.size() && i < r.size(); ++i) {
-        worst = std::max(worst, relative(a[i], r[i]));
-    }
-    return worst;
-}
 
 double median_of(std::vector<double> values) {
     std::sort(values.begin(), values.end());
@@ -137,7 +96,7 @@ void measure(const Scene& scene, SweepPoint& point, int repeats, const Measure& 
             }
             if (k == 0) {
                 point.work = work;
-                point.error = error_of(trajectory);
+                error_of(trajectory, point);
             } else if (!same_work(work, point.work)) {
                 point.work_identical = false;
             }
@@ -169,7 +128,12 @@ Overrides engine_overrides(const SweepPoint& point) {
 template <typename Measure>
 void measure_engine(const EngineSpec& engine, const Scene& scene, SweepPoint& point, int repeats,
                     const Measure& error_of) {
-    const Overrides overrides = engine_overrides(point);
+    // A reference gets the grid's dt only: the rest is its own algorithm.
+    Overrides overrides = engine_overrides(point);
+    if (!point.reference.empty()) {
+        overrides = Overrides{};
+        overrides.dt = point.dt;
+    }
     const Scene effective = with_overrides(scene, overrides);
     const double simulated = static_cast<double>(step_count(effective)) * effective.dt;
     std::vector<double> reported, process;
@@ -188,12 +152,14 @@ void measure_engine(const EngineSpec& engine, const Scene& scene, SweepPoint& po
         }
         steps.push_back(run.cost ? run.cost->steps : std::nullopt);
         if (k == 0) {
-            point.error = error_of(run.trajectory);
+            error_of(run.trajectory, point);
         }
     }
     point.ok = true;
     const bool all_reported = reported.size() == process.size();
-    point.cost_source = all_reported ? SweepCost::engine_reported : SweepCost::process_time;
+    point.cost_source = all_reported                                ? SweepCost::engine_reported
+                        : engine.kind == EngineSpec::Kind::external ? SweepCost::process_time
+                                                                    : SweepCost::in_process;
     set_costs(point, all_reported ? reported : process);
     point.work_counted = steps.front().has_value();
     point.work.steps = steps.front().value_or(0);
@@ -216,6 +182,12 @@ SweepConfig default_sweep_config(const Scene& scene) {
     config.toi_tolerances = {1e-6, 1e-9, 1e-12};
     config.box2d_substeps = {1, 4};
     config.box2d_iterations = {{8, 3}, {30, 10}};
+    // A pile stepped by time-stepping from its start has no time-of-impact
+    // search: the toi method and tolerance would only repeat each point.
+    if (is_pile_scene(scene) && time_stepping_from_start(scene.solver)) {
+        config.toi_methods = {scene.solver.toi};
+        config.toi_tolerances = {scene.solver.toi_tolerance};
+    }
     return config;
 }
 
@@ -231,9 +203,16 @@ const char* sweep_cost_name(SweepCost cost) {
     return "in-process";
 }
 
+bool is_reference_point(const SweepPoint& point) {
+    return point.box2d || !point.reference.empty();
+}
+
 std::string sweep_family(const SweepPoint& point) {
     if (point.box2d) {
         return "box2d";
+    }
+    if (!point.reference.empty()) {
+        return point.reference;
     }
     if (point.kind != EngineSpec::Kind::impulse) {
         return point.engine + " " + integrator_name(point.integrator);
@@ -348,17 +327,41 @@ void add_box2d_points(const SweepConfig& config, std::vector<SweepPoint>& points
 #endif
 }
 
-// The scene with only its exact-answer expectations: what the error is
-// measured against when it declares any.
-Scene with_exact_expectations_only(const Scene& scene) {
-    Scene exact_only = scene;
-    exact_only.expectations.clear();
-    for (const Expectation& x : scene.expectations) {
-        if (is_exact_kind(x.kind)) {
-            exact_only.expectations.push_back(x);
+// Every other reference's points, after Box2D's: its own settings, or each of
+// its sub-step counts, at every dt.
+void add_reference_points(const SweepConfig& config, std::vector<SweepPoint>& points) {
+    for (const SweepReference& reference : config.references) {
+        const std::vector<int> substeps =
+            reference.substeps.empty() ? std::vector<int>{0} : reference.substeps;
+        for (const double dt : config.dts) {
+            for (const int n : substeps) {
+                SweepPoint p;
+                p.kind = reference.spec.kind;
+                p.engine = reference.name;
+                p.reference = reference.name;
+                p.dt = dt;
+                p.substeps = n;
+                p.family = sweep_family(p);
+                points.push_back(p);
+            }
         }
     }
-    return exact_only;
+}
+
+// The reference's engine as one point runs it: `--substeps N` before the
+// scene's path, which the harness appends.
+EngineSpec reference_spec(const SweepConfig& config, const SweepPoint& point) {
+    for (const SweepReference& reference : config.references) {
+        if (reference.name == point.reference) {
+            EngineSpec spec = reference.spec;
+            if (point.substeps > 0) {
+                spec.command.push_back("--substeps");
+                spec.command.push_back(std::to_string(point.substeps));
+            }
+            return spec;
+        }
+    }
+    throw InputError("", "", "the sweep has no reference named " + point.reference);
 }
 
 // Another engine's reference: itself at the finest dt / 4, with the scene's
@@ -415,6 +418,9 @@ std::string cost_source(const SweepConfig& config, const std::vector<SweepPoint>
     }
     std::size_t reported = 0, timed = 0;
     for (const SweepPoint& p : points) {
+        if (is_reference_point(p)) {
+            continue; // a reference's cost is its own, said per point
+        }
         reported += p.ok && p.cost_source == SweepCost::engine_reported ? 1 : 0;
         timed += p.ok && p.cost_source == SweepCost::process_time ? 1 : 0;
     }
@@ -427,6 +433,59 @@ std::string cost_source(const SweepConfig& config, const std::vector<SweepPoint>
     return "cost: the engine's own (its trajectory's cost.seconds) at " +
            plural(reported, "point", "points") +
            ", process wall time (the engine reports none) at " + plural(timed, "point", "points");
+}
+
+// What every point's error is measured against, said in `result`; the
+// reference run when the scene has neither exact answers nor a pile's
+// expectations.
+struct ErrorBasis {
+    Scene exact_only;
+    Trajectory reference;
+};
+
+ErrorBasis error_basis(const Scene& scene, const SweepConfig& config, bool any_ccd,
+                       SweepResult& result) {
+    ErrorBasis basis{with_exact_expectations_only(scene), {}};
+    result.against_exact = !basis.exact_only.expectations.empty();
+    result.pile = !result.against_exact && is_pile_scene(scene);
+    if (result.against_exact) {
+        result.error_reference =
+            "against the exact answers the scene declares (" +
+            plural(basis.exact_only.expectations.size(), "expectation", "expectations") +
+            "): largest |actual - expected| / max(|expected|, " + format_double(sweep_error_floor) +
+            ")";
+    } else if (result.pile) {
+        result.error_reference = "deepest overlap: the deepest interpenetration of any pair in "
+                                 "any frame, in metres (as max-overlap measures it)";
+        result.energy_reference =
+            "energy gained: the largest rise of kinetic + potential energy over the run above "
+            "the lowest energy before it, relative to the energy's scale at t = 0 (a pile's "
+            "energy is fixed by no closed form, so the error is the gain physics forbids)";
+        result.cost_unit = "seconds per body-step (per dynamic body, per step of the scene's dt " +
+                           format_double(scene.dt) + " s)";
+    } else {
+        basis.reference = reference_run(scene, config, any_ccd, result.error_reference);
+    }
+    return basis;
+}
+
+// The titles the legend and the verdicts use, in the points' order.
+std::vector<std::pair<std::string, std::string>> reference_titles(const SweepConfig& config,
+                                                                  const SweepResult& result) {
+    std::vector<std::pair<std::string, std::string>> titles;
+    if (std::any_of(result.points.begin(), result.points.end(),
+                    [](const SweepPoint& p) { return p.box2d; })) {
+        titles.emplace_back("box2d", "Box2D 2.4.1");
+    }
+    for (const SweepReference& reference : config.references) {
+        titles.emplace_back(reference.name, reference.title);
+    }
+    return titles;
+}
+
+std::size_t dynamic_bodies(const Scene& scene) {
+    return static_cast<std::size_t>(std::count_if(scene.bodies.begin(), scene.bodies.end(),
+                                                  [](const SceneBody& b) { return !b.is_static; }));
 }
 
 } // namespace
@@ -451,6 +510,7 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
     const bool any_ccd = std::find(ccds.begin(), ccds.end(), true) != ccds.end();
     result.points = impulse_grid ? impulse_points(config, ccds) : engine_points(config, scene);
     add_box2d_points(config, result.points);
+    add_reference_points(config, result.points);
     if (result.points.empty()) {
         throw InputError(scene.file, "", "the sweep's grid is empty");
     }
@@ -461,33 +521,36 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
         (void)with_overrides(scene, o);
     }
     require_box2d_can_run(scene, config);
+    const ErrorBasis basis = error_basis(scene, config, any_ccd, result);
+    result.references = reference_titles(config, result);
+    // A pile's cost per body-step at the scene's own dt: seconds per
+    // simulated second times dt / N, the same scale for every point.
+    const double cost_scale =
+        result.pile
+            ? scene.dt / static_cast<double>(std::max<std::size_t>(dynamic_bodies(scene), 1))
+            : 1.0;
 
-    // What the error is measured against.
-    const Scene exact_only = with_exact_expectations_only(scene);
-    result.against_exact = !exact_only.expectations.empty();
-    Trajectory reference;
-    if (result.against_exact) {
-        result.error_reference =
-            "against the exact answers the scene declares (" +
-            plural(exact_only.expectations.size(), "expectation", "expectations") +
-            "): largest |actual - expected| / max(|expected|, " + format_double(sweep_error_floor) +
-            ")";
-    } else {
-        reference = reference_run(scene, config, any_ccd, result.error_reference);
-    }
-
+    const auto error_of = [&](const Trajectory& t, SweepPoint& point) {
+        if (result.pile) {
+            point.error = deepest_overlap_over_run(scene, t);
+            point.energy_error = energy_gain_over_run(scene, t);
+        } else {
+            point.error = result.against_exact ? error_against_exact(basis.exact_only, t)
+                                               : error_against_reference(basis.reference, t);
+        }
+    };
     const std::size_t total = result.points.size();
     for (std::size_t i = 0; i < total; ++i) {
         SweepPoint& point = result.points[i];
-        const auto error_of = [&](const Trajectory& t) {
-            return result.against_exact ? error_against_exact(exact_only, t)
-                                        : error_against_reference(reference, t);
-        };
         if (point.box2d || point.kind == EngineSpec::Kind::impulse) {
             measure(scene, point, config.repeats, error_of);
+        } else if (!point.reference.empty()) {
+            measure_engine(reference_spec(config, point), scene, point, config.repeats, error_of);
         } else {
             measure_engine(config.engine, scene, point, config.repeats, error_of);
         }
+        point.cost_median *= cost_scale;
+        point.cost_spread *= cost_scale;
         if (progress) {
             progress(i + 1, total, point);
         }

@@ -18,11 +18,24 @@
 
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace impulse::harness {
+
+// A reference engine of the registry (reference_engines.h) other than the
+// in-process Box2D 2.4.1, swept over the grid's time steps and, for the Node
+// references, over its sub-steps (`--substeps N` on its command line: Box2D
+// v3's sub-steps, Rapier's solver iterations). Its points are one family,
+// named after it, so its front sits on the same axes as impulse's.
+struct SweepReference {
+    std::string name;          // "box2d-3": the family and what --with takes
+    std::string title;         // "Box2D v3", for the legend and the verdict
+    EngineSpec spec;           // how to run it
+    std::vector<int> substeps; // empty: the engine's own setting only
+};
 
 struct SweepConfig {
     // The engine under study; the Box2D points below are the reference beside it.
@@ -38,6 +51,7 @@ struct SweepConfig {
     bool box2d = true; // ignored (no Box2D points) when the tool is built without Box2D
     std::vector<int> box2d_substeps;
     std::vector<std::pair<int, int>> box2d_iterations; // (velocity, position)
+    std::vector<SweepReference> references;            // every other reference's front
     int repeats = 5;                                   // timed runs per grid point
 };
 
@@ -49,7 +63,9 @@ std::vector<std::string> tunnelling_warnings(const Scene& scene, const SweepConf
 // The defaults: dt in {1/30, ..., 1/960} (those not longer than the scene's
 // duration), all four integrators, both time-of-impact methods, toi_tolerance
 // {1e-6, 1e-9, 1e-12}, ccd as the scene sets it; Box2D over the same dts x substeps {1, 4} x
-// iterations {8/3, 30/10}; 5 repeats.
+// iterations {8/3, 30/10}; 5 repeats. On a pile stepped by time-stepping from
+// its start (no time-of-impact search) the scene's own toi method and
+// tolerance only.
 SweepConfig default_sweep_config(const Scene& scene);
 
 // Where a point's cost comes from.
@@ -65,6 +81,9 @@ const char* sweep_cost_name(SweepCost cost);
 // One grid point and what it measured.
 struct SweepPoint {
     bool box2d = false;
+    // A reference of SweepConfig::references: its name (also the family);
+    // empty for the engine under study and for Box2D 2.4.1.
+    std::string reference;
     // The engine under study's points (box2d false): its kind and name.
     EngineSpec::Kind kind = EngineSpec::Kind::impulse;
     std::string engine = "impulse";
@@ -77,7 +96,7 @@ struct SweepPoint {
     TimeOfImpactMethod toi = TimeOfImpactMethod::bisection;
     double toi_tolerance = 0.0;
     bool ccd = false; // solver.ccd
-    // Box2D points
+    // Box2D points, and a reference's --substeps (0: the engine's own)
     int substeps = 0;
     int velocity_iterations = 0;
     int position_iterations = 0;
@@ -87,7 +106,10 @@ struct SweepPoint {
     // failed; failure then says "unsupported by ENGINE: ...".
     bool skipped = false;
     std::string failure; // why the engine refused this point, one sentence
-    double error = 0.0;  // the largest relative error (see SweepResult::error_reference)
+    double error = 0.0;  // the largest relative error (see SweepResult::error_reference);
+                         // on a pile, the deepest overlap in metres
+    // A pile's second error axis (SweepResult::energy_reference); NaN elsewhere.
+    double energy_error = std::numeric_limits<double>::quiet_NaN();
     // Seconds of (steady-clock) time per simulated second: median over the
     // repeats and their spread (max - min).
     double cost_median = 0.0;
@@ -111,6 +133,13 @@ struct SweepResult {
     std::string error_reference; // one sentence saying which
     double simulated_duration = 0.0;
     int repeats = 0;
+    // A pile (sweep_measures.h): errors are the deepest overlap and the
+    // energy gained, costs seconds per body-step at the scene's dt.
+    bool pile = false;
+    std::string energy_reference; // a pile's energy axis, one sentence
+    std::string cost_unit = "seconds per simulated second";
+    // Box2D 2.4.1 (when it has points) and every reference: (family, title).
+    std::vector<std::pair<std::string, std::string>> references;
     std::vector<SweepPoint> points; // impulse points first, then Box2D, in grid order
 };
 
@@ -137,11 +166,14 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
 // then error.
 std::vector<std::size_t> pareto_front(const std::vector<std::pair<double, double>>& cost_error);
 
+// Box2D 2.4.1's point or another reference's: not the engine under study.
+bool is_reference_point(const SweepPoint& point);
+
 // Sets on_front for every successful point, per family.
 void mark_fronts(std::vector<SweepPoint>& points);
 
 // "impulse verlet/secant", "impulse verlet/secant+ccd" (ccd on), "box2d",
-// or "ENGINE INTEGRATOR" for another engine.
+// a reference's name ("box2d-3"), or "ENGINE INTEGRATOR" for another engine.
 std::string sweep_family(const SweepPoint& point);
 
 // The two targets against Box2D:

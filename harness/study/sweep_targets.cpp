@@ -99,7 +99,7 @@ SweepTargets evaluate_targets(const SweepResult& result) {
         const SweepPoint& b = points[t.box2d_60hz];
         for (std::size_t i = 0; i < points.size(); ++i) {
             const SweepPoint& p = points[i];
-            if (p.box2d || !measured_point(p) || p.cost_median > b.cost_median) {
+            if (is_reference_point(p) || !measured_point(p) || p.cost_median > b.cost_median) {
                 continue;
             }
             const SweepPoint* best = t.impulse_found ? &points[t.best_impulse] : nullptr;
@@ -135,7 +135,7 @@ SweepTargets evaluate_targets(const SweepResult& result) {
         const SweepPoint& b = points[box2d[k]];
         ++t.box2d_front_size;
         const bool dominated = std::any_of(points.begin(), points.end(), [&](const SweepPoint& p) {
-            return !p.box2d && measured_point(p) && dominates(p, b);
+            return !is_reference_point(p) && measured_point(p) && dominates(p, b);
         });
         if (dominated) {
             ++t.box2d_front_dominated;
