@@ -1,0 +1,336 @@
+#include "mprgp.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+namespace impulse {
+
+namespace {
+
+constexpr double infinite = std::numeric_limits<double>::infinity();
+
+// Dostal's proportioning constant: a proportioning step is taken when the
+// active set's chopped gradient outweighs the free set's reduced one; 1 is the
+// value his convergence bounds are usually quoted for.
+constexpr double proportion = 1.0;
+
+std::size_t at(int i) {
+    return static_cast<std::size_t>(i);
+}
+
+// The body's slot in dv: 0 for every static body (zero inverse mass and
+// inertia, so its velocity change stays exactly 0), else its own from 1 on.
+int slot_of(const World& world, int body, MprgpScratch& s) {
+    if (world.bodies[at(body)].is_static()) {
+        return 0;
+    }
+    int& slot = s.local_of_body[at(body)];
+    if (slot < 0) {
+        s.bodies.push_back(body);
+        slot = static_cast<int>(s.bodies.size()); // slot 0 is the static bodies'
+    }
+    return slot;
+}
+
+// The same row solve_pgs builds: +lambda n on A and -lambda n on B.
+PgsRow row_of(const World& world, const ContactPoint& p, MprgpScratch& s) {
+    const Body& a = world.bodies[at(p.a)];
+    const Body& b = world.bodies[at(p.b)];
+    const Vec2 n = p.contact.normal;
+    PgsRow r;
+    r.slot_a = slot_of(world, p.a, s);
+    r.slot_b = slot_of(world, p.b, s);
+    r.nx = n.x;
+    r.ny = n.y;
+    r.rn_a = p.rn_a;
+    r.rn_b = p.rn_b;
+    r.ka_x = a.inv_mass * n.x;
+    r.ka_y = a.inv_mass * n.y;
+    r.ra = a.inv_inertia * p.rn_a;
+    r.kb_x = -(b.inv_mass * n.x);
+    r.kb_y = -(b.inv_mass * n.y);
+    r.rb = -(b.inv_inertia * p.rn_b);
+    return r;
+}
+
+// y = A x = J (M^-1 J^T x): x scattered into the bodies' dv, then each
+// point's relative normal velocity read back. O(points), A never formed.
+void multiply(const std::vector<double>& x, std::vector<double>& y, MprgpScratch& s) {
+    std::fill(s.dv_x.begin(), s.dv_x.end(), 0.0);
+    std::fill(s.dv_y.begin(), s.dv_y.end(), 0.0);
+    std::fill(s.dw.begin(), s.dw.end(), 0.0);
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        if (x[i] == 0.0) {
+            continue;
+        }
+        const PgsRow& r = s.rows[i];
+        const std::size_t a = at(r.slot_a);
+        const std::size_t b = at(r.slot_b);
+        s.dv_x[a] += x[i] * r.ka_x;
+        s.dv_y[a] += x[i] * r.ka_y;
+        s.dw[a] += x[i] * r.ra;
+        s.dv_x[b] += x[i] * r.kb_x;
+        s.dv_y[b] += x[i] * r.kb_y;
+        s.dw[b] += x[i] * r.rb;
+    }
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        const PgsRow& r = s.rows[i];
+        const std::size_t a = at(r.slot_a);
+        const std::size_t b = at(r.slot_b);
+        const double ja = r.nx * s.dv_x[a] + r.ny * s.dv_y[a] + r.rn_a * s.dw[a];
+        const double jb = r.nx * s.dv_x[b] + r.ny * s.dv_y[b] + r.rn_b * s.dw[b];
+        y[i] = ja - jb;
+    }
+}
+
+double inner(const std::vector<double>& u, const std::vector<double>& v) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < u.size(); ++i) {
+        sum += u[i] * v[i];
+    }
+    return sum;
+}
+
+// The M^-1 norm of a point's row of J on one body: sqrt(n.n / m + rn^2 / I).
+double row_norm(const Body& body, const ContactPoint& p, double rn) {
+    const Vec2 n = p.contact.normal;
+    return std::sqrt(body.inv_mass * (n.x * n.x + n.y * n.y) + body.inv_inertia * rn * rn);
+}
+
+// The bound ||A|| <= max_i (s_ia S_a + s_ib S_b) of mprgp.h, with the per-slot
+// sums S kept in dv_x for the moment (a product clears it before use).
+double norm_bound(const World& world, const std::vector<ContactPoint>& points, MprgpScratch& s) {
+    std::fill(s.dv_x.begin(), s.dv_x.end(), 0.0);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const ContactPoint& p = points[i];
+        s.dv_x[at(s.rows[i].slot_a)] += row_norm(world.bodies[at(p.a)], p, p.rn_a);
+        s.dv_x[at(s.rows[i].slot_b)] += row_norm(world.bodies[at(p.b)], p, p.rn_b);
+    }
+    double bound = 0.0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const ContactPoint& p = points[i];
+        const double sa = row_norm(world.bodies[at(p.a)], p, p.rn_a);
+        const double sb = row_norm(world.bodies[at(p.b)], p, p.rn_b);
+        bound =
+            std::max(bound, sa * s.dv_x[at(s.rows[i].slot_a)] + sb * s.dv_x[at(s.rows[i].slot_b)]);
+    }
+    return bound;
+}
+
+// Rows, diagonals, slots and vector sizes for this call; the warm start sized
+// and projected onto lambda >= 0. Returns the expansion step length.
+double prepare(const World& world, const std::vector<ContactPoint>& points,
+               std::vector<double>& lambda, MprgpScratch& s) {
+    if (s.local_of_body.size() < world.bodies.size()) {
+        s.local_of_body.resize(world.bodies.size(), -1);
+    }
+    s.bodies.clear();
+    const std::size_t n = points.size();
+    s.rows.resize(n);
+    s.diagonal.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        s.rows[i] = row_of(world, points[i], s);
+        s.diagonal[i] = delassus(world, points[i], points[i]); // A_ii, as solve_lcp sees it
+    }
+    const std::size_t slots = s.bodies.size() + 1;
+    s.dv_x.assign(slots, 0.0);
+    s.dv_y.assign(slots, 0.0);
+    s.dw.assign(slots, 0.0);
+    s.gradient.assign(n, 0.0);
+    s.direction.assign(n, 0.0);
+    s.product.assign(n, 0.0);
+    if (lambda.size() != n) {
+        lambda.assign(n, 0.0);
+    }
+    for (double& l : lambda) {
+        l = std::max(0.0, l); // a warm start is a solution's guess: never < 0
+    }
+    // 1.9 rather than 2 / ||A||: the bound is rounded, and the theory's
+    // interval (0, 2 / ||A||] is open to nothing beyond it. An A of zeros
+    // (points between static bodies only) needs no particular length.
+    const double bound = norm_bound(world, points, s);
+    return bound > 0.0 ? 1.9 / bound : 1.0;
+}
+
+// The LCP residual of one point, as solve_pgs measures it.
+double residual_of(double w, double lambda, double diagonal) {
+    return std::max(-w, std::min(diagonal * lambda, w));
+}
+
+double residual(const std::vector<double>& lambda, const MprgpScratch& s) {
+    double worst = 0.0;
+    for (std::size_t i = 0; i < lambda.size(); ++i) {
+        worst = std::max(worst, residual_of(s.gradient[i], lambda[i], s.diagonal[i]));
+    }
+    return worst;
+}
+
+// gradient = A lambda + q, fresh (no product for lambda = 0). Returns the
+// products made.
+int refresh_gradient(const std::vector<double>& q, const std::vector<double>& lambda,
+                     MprgpScratch& s) {
+    const bool zero = std::all_of(lambda.begin(), lambda.end(), [](double l) { return l == 0.0; });
+    if (zero) {
+        s.gradient = q;
+        return 0;
+    }
+    multiply(lambda, s.gradient, s);
+    for (std::size_t i = 0; i < q.size(); ++i) {
+        s.gradient[i] += q[i];
+    }
+    return 1;
+}
+
+// p = the free gradient: w_i where lambda_i > 0, else 0.
+void restart_direction(const std::vector<double>& lambda, MprgpScratch& s) {
+    for (std::size_t i = 0; i < lambda.size(); ++i) {
+        s.direction[i] = lambda[i] > 0.0 ? s.gradient[i] : 0.0;
+    }
+}
+
+// Dostal's test ||beta||^2 <= Gamma^2 phi~ . phi: the chopped gradient beta
+// (min(w_i, 0) on the active set) against the free gradient phi reduced to
+// what a step of length alpha can take before lambda_i reaches 0.
+bool proportional(const std::vector<double>& lambda, double alpha, const MprgpScratch& s) {
+    double chopped = 0.0;
+    double reduced = 0.0;
+    for (std::size_t i = 0; i < lambda.size(); ++i) {
+        const double w = s.gradient[i];
+        if (lambda[i] > 0.0) {
+            reduced += std::min(lambda[i] / alpha, w) * w;
+        } else if (w < 0.0) {
+            chopped += w * w;
+        }
+    }
+    return chopped <= proportion * proportion * reduced;
+}
+
+// Proportioning: a line search along the chopped gradient, which only raises
+// active entries. Returns the products made.
+int proportioning(std::vector<double>& lambda, double alpha, MprgpScratch& s) {
+    std::vector<double>& d = s.direction;
+    for (std::size_t i = 0; i < lambda.size(); ++i) {
+        d[i] = lambda[i] > 0.0 ? 0.0 : std::min(s.gradient[i], 0.0);
+    }
+    multiply(d, s.product, s);
+    const double curvature = inner(d, s.product);
+    // Zero curvature along a descent direction that only raises lambda means
+    // the QP is unbounded (the LCP has no solution): a fixed step keeps the
+    // iteration finite and the residual says it did not converge.
+    const double step = curvature > 0.0 ? inner(d, d) / curvature : alpha;
+    for (std::size_t i = 0; i < lambda.size(); ++i) {
+        lambda[i] = std::max(0.0, lambda[i] - step * d[i]);
+        s.gradient[i] -= step * s.product[i];
+    }
+    restart_direction(lambda, s);
+    return 1;
+}
+
+// The largest step along -p that keeps lambda >= 0.
+double feasible_step(const std::vector<double>& lambda, const std::vector<double>& p) {
+    double step = infinite;
+    for (std::size_t i = 0; i < lambda.size(); ++i) {
+        if (p[i] > 0.0) {
+            step = std::min(step, lambda[i] / p[i]);
+        }
+    }
+    return step;
+}
+
+// Expansion: along -p to the bound (the step cg would overshoot), then a
+// projected step of fixed length alpha along the free gradient, which may
+// free or fix many entries at once; the gradient is then computed afresh.
+int expansion(const std::vector<double>& q, std::vector<double>& lambda, double half, double alpha,
+              MprgpScratch& s) {
+    for (std::size_t i = 0; i < lambda.size(); ++i) {
+        lambda[i] = std::max(0.0, lambda[i] - half * s.direction[i]);
+        s.gradient[i] -= half * s.product[i];
+    }
+    for (std::size_t i = 0; i < lambda.size(); ++i) {
+        if (lambda[i] > 0.0) {
+            lambda[i] = std::max(0.0, lambda[i] - alpha * s.gradient[i]);
+        }
+    }
+    const int products = refresh_gradient(q, lambda, s);
+    restart_direction(lambda, s);
+    return products;
+}
+
+// A conjugate gradient step on the free set, or an expansion step where it
+// would cross lambda >= 0. `fresh` says whether the gradient was just
+// recomputed rather than updated. Returns the products made.
+int free_step(const std::vector<double>& q, std::vector<double>& lambda, double alpha, bool& fresh,
+              MprgpScratch& s) {
+    std::vector<double>& p = s.direction;
+    multiply(p, s.product, s);
+    const double curvature = inner(p, s.product);
+    const double cg = curvature > 0.0 ? inner(s.gradient, p) / curvature : infinite;
+    const double bound = feasible_step(lambda, p);
+    if (cg <= bound) {
+        for (std::size_t i = 0; i < lambda.size(); ++i) {
+            lambda[i] = std::max(0.0, lambda[i] - cg * p[i]);
+            s.gradient[i] -= cg * s.product[i];
+        }
+        // p = phi - beta p with beta = phi . A p / p . A p: A-conjugate to p.
+        double phi_ap = 0.0;
+        for (std::size_t i = 0; i < lambda.size(); ++i) {
+            phi_ap += lambda[i] > 0.0 ? s.gradient[i] * s.product[i] : 0.0;
+        }
+        const double beta = phi_ap / curvature;
+        for (std::size_t i = 0; i < lambda.size(); ++i) {
+            p[i] = (lambda[i] > 0.0 ? s.gradient[i] : 0.0) - beta * p[i];
+        }
+        fresh = false;
+        return 1;
+    }
+    // A direction of zero curvature with no bound ahead is flat: the
+    // projected step alone moves.
+    const double half = bound < infinite ? bound : 0.0;
+    fresh = true;
+    return 1 + expansion(q, lambda, half, alpha, s);
+}
+
+} // namespace
+
+PgsResult solve_mprgp(const World& world, const std::vector<ContactPoint>& points,
+                      const std::vector<double>& q, std::vector<double>& lambda,
+                      const PgsSettings& settings, MprgpScratch& scratch) {
+    MprgpScratch& s = scratch;
+    const double alpha = prepare(world, points, lambda, s);
+    PgsResult result;
+    result.sweeps = refresh_gradient(q, lambda, s);
+    bool fresh = true;
+    result.residual = residual(lambda, s);
+    restart_direction(lambda, s);
+    while (result.residual > settings.tolerance && result.sweeps < settings.max_sweeps) {
+        if (proportional(lambda, alpha, s)) {
+            result.sweeps += free_step(q, lambda, alpha, fresh, s);
+        } else {
+            result.sweeps += proportioning(lambda, alpha, s);
+            fresh = false;
+        }
+        result.residual = residual(lambda, s);
+        if (result.residual <= settings.tolerance && !fresh) {
+            // The running gradient says done: confirm on a fresh one, which
+            // also restarts the iteration without its rounding if not.
+            result.sweeps += refresh_gradient(q, lambda, s);
+            fresh = true;
+            result.residual = residual(lambda, s);
+            restart_direction(lambda, s);
+        }
+    }
+    if (!fresh) { // stopped by the cap: measure what is returned
+        result.sweeps += refresh_gradient(q, lambda, s);
+        result.residual = residual(lambda, s);
+    }
+    result.converged = result.residual <= settings.tolerance;
+    for (const int body : s.bodies) {
+        s.local_of_body[at(body)] = -1; // reset only what this call touched
+    }
+    s.bodies.clear();
+    return result;
+}
+
+} // namespace impulse
