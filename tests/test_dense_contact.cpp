@@ -333,8 +333,8 @@ Shape random_shape(std::mt19937_64& rng, double size) {
 
 struct PileLayout {
     int columns = 1;
-    double spacing = 0.42;                   // more than every body's bounding diameter
-    double half_width = 0.21;                // the walls' inner faces are at x = +-half_width
+    double spacing = 0.6;    // more than every bounding diameter (a 0.2 x 0.2 box: 0.566)
+    double half_width = 0.3; // the walls' inner faces are at x = +-half_width
     double floor_slope = 0.2617993877991494; // 15 degrees
     double lattice_base = 0.0;               // the V's height at the walls: row 0 sits above it
     // The top row's height above the V's lowest point, where a body can fall to.
@@ -352,6 +352,17 @@ PileLayout layout_of(int count) {
     layout.half_width = 0.5 * layout.columns * layout.spacing;
     layout.lattice_base = layout.half_width * std::tan(layout.floor_slope);
     return layout;
+}
+
+double bounding_radius(const Shape& shape) {
+    if (shape.type == ShapeType::circle) {
+        return shape.radius;
+    }
+    double r = 0.0;
+    for (int i = 0; i < shape.polygon.count; ++i) {
+        r = std::max(r, length(shape.polygon.vertices[static_cast<std::size_t>(i)]));
+    }
+    return r;
 }
 
 World random_pile(const PileCase& pile) {
@@ -375,7 +386,9 @@ World random_pile(const PileCase& pile) {
         const double size = test::uniform(rng, 0.04, 0.2);
         const Shape shape = random_shape(rng, size);
         const double mass = test::log_uniform(rng, 0.1, 10.0);
-        const double room = 0.5 * layout.spacing - size; // the shift that keeps it in its site
+        // The shift that keeps it in its site whatever its angle: its
+        // bounding circle, not its half size (a box's corner reaches further).
+        const double room = 0.5 * layout.spacing - bounding_radius(shape);
         const double x =
             -w + layout.spacing * ((i % layout.columns) + 0.5) + test::uniform(rng, -room, room);
         const double y = layout.lattice_base + layout.spacing * ((i / layout.columns) + 0.5);
@@ -394,17 +407,6 @@ int steps_to_rest(const PileCase& pile) {
     const double t1 = std::sqrt(2.0 * layout_of(pile.count).top(pile.count) / g);
     const double seconds = std::max(8.0, t1 * (1.0 + pile.e) / (1.0 - pile.e) + 2.0);
     return static_cast<int>(std::ceil(seconds / h60));
-}
-
-double bounding_radius(const Shape& shape) {
-    if (shape.type == ShapeType::circle) {
-        return shape.radius;
-    }
-    double r = 0.0;
-    for (int i = 0; i < shape.polygon.count; ++i) {
-        r = std::max(r, length(shape.polygon.vertices[static_cast<std::size_t>(i)]));
-    }
-    return r;
 }
 
 // The deepest interpenetration (-separation, 0 when nothing overlaps) of any
