@@ -63,13 +63,13 @@ double impulse_under(const World& before, const World& after, std::size_t first,
 
 } // namespace
 
-// Hidden until the engine meets it: with 20 points the island goes to the
-// projected Gauss-Seidel solver, whose first step stops at the 200-sweep cap
-// with the impulses 20% off, so boxes drift sideways by 4e-5 m and impacts
-// appear (a stack of eight, 16 points, solved by pivoting, meets it to 6e-15).
+// With 20 points the island goes to the iterative solver. Projected
+// Gauss-Seidel stopped at its 200-sweep cap with the impulses 20% off; MPRGP
+// (conjugate gradients on the free set) ends a 20-unknown problem in at most
+// 20 products to rounding, so the pivoting solver's 1e-12 holds here too.
 TEST_CASE(
     "each step the impulse under box k of a stack of ten is h g times the mass at and above k",
-    "[.][dense-contact-open]") {
+    "[dense-contact]") {
     // Eq. 15: at rest v = 0, so phase 2's holding LCP gives each contact the
     // impulse that cancels gravity's kick on everything it carries.
     std::vector<Body> bodies{static_body(make_box(5.0, 0.5), {0.0, -0.5})};
@@ -486,10 +486,10 @@ double free_flight_gain(const World& world, double h) {
 }
 
 // Runs the pile at 60 Hz, checking every step: finite, no overlap deeper than
-// 1e-6 m, energy not gained beyond rounding (and Euler's own flight); at the
-// end (steps_to_rest) at rest, kinetic energy at most 1e-9 of the energy the
-// fall released.
-void check_pile_settles(const PileCase& pile) {
+// 1e-6 m, energy not gained beyond rounding (and Euler's own flight); with
+// `require_rest`, at the end (steps_to_rest) at rest, kinetic energy at most
+// 1e-9 of the energy the fall released.
+void check_pile_settles(const PileCase& pile, bool require_rest) {
     World world = random_pile(pile);
     INFO("seed " << pile.seed << ", " << pile.count << " bodies, e " << pile.e << ", integrator "
                  << static_cast<int>(pile.integrator) << ", stepping "
@@ -526,7 +526,9 @@ void check_pile_settles(const PileCase& pile) {
     CHECK(worst_gain <= 0.0);
     const double released = start.total() - last.potential;
     INFO("kinetic " << last.kinetic << " J of " << released << " J released");
-    CHECK(last.kinetic <= 1e-9 * released);
+    if (require_rest) {
+        CHECK(last.kinetic <= 1e-9 * released);
+    }
 }
 
 std::vector<PileCase> sweep_cases(int count, std::uint64_t first_seed) {
@@ -576,22 +578,30 @@ TEST_CASE("world and local stepping give the same bits under time-stepping", "[d
     }
 }
 
-// Hidden until the engine meets it: on e1's engine of 05:00 UTC every one of
-// these piles breaks an invariant (overlaps of 5 mm to 4 cm, energy gained,
-// kinetic energy above 1e-5 of the energy released at the end).
-TEST_CASE("seeded random piles settle with every invariant: every integrator, both steppings",
-          "[.][dense-contact-open]") {
+TEST_CASE("seeded random piles keep every invariant: every integrator, both steppings",
+          "[dense-contact]") {
     // Eight piles cover the four integrators twice, each stepping four times
     // and every e in {0, 0.3, 0.6, 0.9}, in a few seconds; the
     // [dense-contact-sweep] test runs 48.
     for (const PileCase& pile : sweep_cases(8, 1)) {
-        check_pile_settles(pile);
+        check_pile_settles(pile, false);
     }
 }
 
-TEST_CASE("the larger sweep: 48 seeded random piles settle with every invariant",
+TEST_CASE("the larger sweep: 48 seeded random piles keep every invariant",
           "[.][dense-contact-sweep]") {
     for (const PileCase& pile : sweep_cases(48, 1001)) {
-        check_pile_settles(pile);
+        check_pile_settles(pile, false);
+    }
+}
+
+// Hidden while the engine misses it: frictionless piles creep. Measured
+// (K <= 1e-9 of the energy released from then on, run to 40 s): the eight
+// piles come to rest at 11.6, 21.0, > 40, 8.7, 8.3, 11.3, 5.9 and 5.7 s; the
+// one past 40 s (seed 3, 21 bodies, e = 0.6) still has eight bodies
+// sliding at 2 to 5 mm/s, compacting, its energy falling all the while.
+TEST_CASE("seeded random piles come to rest by max(8 s, t_inf + 2 s)", "[.][dense-contact-rest]") {
+    for (const PileCase& pile : sweep_cases(8, 1)) {
+        check_pile_settles(pile, true);
     }
 }
