@@ -6,6 +6,7 @@
 // exactly g sin(theta) per step; a box wedged between a ramp and a wall rests
 // in the closed-form pose with the closed-form forces; a drop converges at
 // first order; world and local stepping give the same bits.
+#include "contact_candidates.h"
 #include "manifold.h"
 #include "support.h"
 #include "world.h"
@@ -355,14 +356,7 @@ PileLayout layout_of(int count) {
 }
 
 double bounding_radius(const Shape& shape) {
-    if (shape.type == ShapeType::circle) {
-        return shape.radius;
-    }
-    double r = 0.0;
-    for (int i = 0; i < shape.polygon.count; ++i) {
-        r = std::max(r, length(shape.polygon.vertices[static_cast<std::size_t>(i)]));
-    }
-    return r;
+    return shape.type == ShapeType::circle ? shape.radius : rotation_radius(shape);
 }
 
 World random_pile(const PileCase& pile) {
@@ -386,8 +380,8 @@ World random_pile(const PileCase& pile) {
         const double size = test::uniform(rng, 0.04, 0.2);
         const Shape shape = random_shape(rng, size);
         const double mass = test::log_uniform(rng, 0.1, 10.0);
-        // The shift that keeps it in its site whatever its angle: its
-        // bounding circle, not its half size (a box's corner reaches further).
+        // Kept in its site at any angle: by its bounding circle (a box's
+        // corner reaches past its half size).
         const double room = 0.5 * layout.spacing - bounding_radius(shape);
         const double x =
             -w + layout.spacing * ((i % layout.columns) + 0.5) + test::uniform(rng, -room, room);
@@ -580,9 +574,8 @@ TEST_CASE("world and local stepping give the same bits under time-stepping", "[d
 
 TEST_CASE("seeded random piles keep every invariant: every integrator, both steppings",
           "[dense-contact]") {
-    // Eight piles cover the four integrators twice, each stepping four times
-    // and every e in {0, 0.3, 0.6, 0.9}, in a few seconds; the
-    // [dense-contact-sweep] test runs 48.
+    // Every integrator twice, each stepping four times, every e in {0, 0.3,
+    // 0.6, 0.9}, in a few seconds; [dense-contact-sweep] runs 48.
     for (const PileCase& pile : sweep_cases(8, 1)) {
         check_pile_settles(pile, false);
     }
@@ -595,11 +588,9 @@ TEST_CASE("the larger sweep: 48 seeded random piles keep every invariant",
     }
 }
 
-// Hidden while the engine misses it: frictionless piles creep. Measured
-// (K <= 1e-9 of the energy released from then on, run to 40 s): the eight
-// piles come to rest at 11.6, 21.0, > 40, 8.7, 8.3, 11.3, 5.9 and 5.7 s; the
-// one past 40 s (seed 3, 21 bodies, e = 0.6) still has eight bodies
-// sliding at 2 to 5 mm/s, compacting, its energy falling all the while.
+// Hidden while the engine misses it: frictionless piles creep. At rest (K <=
+// 1e-9 released from then on) at 11.6, 21.0, > 40 (eight bodies sliding at
+// 2-5 mm/s at 40 s), 8.7, 8.3, 11.3, 5.9 and 5.7 s.
 TEST_CASE("seeded random piles come to rest by max(8 s, t_inf + 2 s)", "[.][dense-contact-rest]") {
     for (const PileCase& pile : sweep_cases(8, 1)) {
         check_pile_settles(pile, true);
