@@ -9,13 +9,14 @@
 
 namespace impulse {
 
-// For every island some impulse acted on this step: if its energy
-// (kinetic + potential, from s.start to now) rose by dE beyond 8 eps of the
-// sum of its terms' magnitudes, its velocities are scaled by
-// sqrt(1 - dE / K), or, when its kinetic energy K is less than dE, it stops
-// (zero velocity; its poses stay, so the overlap guard's work is kept and the
-// rise left is at most the guard's lift, m |g| times at most its depth).
-// Counted in world.work.energy_guard_steps and energy_guard_joules.
+// For every island some impulse acted on this step, or with a body the
+// overlap guard moved (s.guard_moved): if its energy (kinetic + potential,
+// from s.start to now) rose by dE beyond 8 eps of the sum of its terms'
+// magnitudes, its velocities are scaled by sqrt(1 - dE / K), or, when its
+// kinetic energy K is less than dE, it goes back to its poses at the step's
+// start, at rest (energy P(x_k) <= E_k). Energy then never rises beyond
+// rounding, whatever moved the bodies. Counted in world.work.energy_guard_steps
+// and energy_guard_joules.
 void guard_energy(World& world, TimeSteppingScratch& s);
 
 } // namespace impulse

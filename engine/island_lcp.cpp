@@ -1,6 +1,7 @@
 #include "island_lcp.h"
 
 #include "lcp.h"
+#include "mprgp.h"
 #include "pgs.h"
 
 #include <algorithm>
@@ -74,13 +75,42 @@ IslandSolve solve_iteratively(World& world, IslandProblem& p, double tolerance) 
     return result;
 }
 
+// MPRGP (mprgp.h), warm started from problem.lambda: about sqrt(cond A)
+// products where Gauss-Seidel needs about cond A sweeps, so a tall column
+// converges cold within the cap and a settled pile in one product.
+IslandSolve solve_by_mprgp(World& world, IslandProblem& p, double tolerance) {
+    PgsSettings settings;
+    settings.tolerance = tolerance;
+    settings.max_sweeps =
+        iterative_products_per_search_iteration * world.solver.max_search_iterations;
+    const PgsResult r = solve_mprgp(world, p.points, p.q, p.lambda, settings, p.mprgp);
+    world.work.solver_sweeps += r.sweeps;
+    if (!r.converged) {
+        ++world.work.unconverged_islands;
+    }
+    IslandSolve result;
+    result.converged = r.converged;
+    result.residual = r.residual;
+    return result;
+}
+
 } // namespace
 
 IslandSolve solve_island(World& world, IslandProblem& problem, double tolerance) {
     if (problem.points.size() <= direct_solve_points) {
-        return solve_directly(world, problem);
+        const IslandSolve direct = solve_directly(world, problem);
+        if (direct.solved) {
+            return direct;
+        }
+        // Pivoting can cycle on a degenerate A (points of one manifold that
+        // are redundant); MPRGP needs A only positive semidefinite.
+        problem.lambda.assign(problem.points.size(), 0.0);
+        return solve_by_mprgp(world, problem, tolerance);
     }
-    return solve_iteratively(world, problem, tolerance);
+    if (iterative_solver == IterativeSolver::pgs) {
+        return solve_iteratively(world, problem, tolerance);
+    }
+    return solve_by_mprgp(world, problem, tolerance);
 }
 
 } // namespace impulse

@@ -14,6 +14,17 @@ namespace impulse {
 // At or below this many points an island is solved directly.
 inline constexpr std::size_t direct_solve_points = 16;
 
+// The solver of islands above direct_solve_points: MPRGP (mprgp.h), measured
+// against projected Gauss-Seidel (pgs.h) in docs/engine.md; PGS stays for
+// that comparison.
+enum class IterativeSolver { pgs, mprgp };
+inline constexpr IterativeSolver iterative_solver = IterativeSolver::mprgp;
+
+// MPRGP's cap in matrix products: this many per solver.max_search_iterations
+// (2000 at the default 200; one product costs about one PGS sweep; a cold
+// pile of 1000 discs needs about 1300).
+inline constexpr int iterative_products_per_search_iteration = 10;
+
 struct IslandSolve {
     bool solved = true;    // false: the pivoting solver found no solution
     bool converged = true; // false: the sweep cap stopped the iterative solver

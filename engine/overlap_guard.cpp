@@ -5,94 +5,145 @@
 #include "manifold.h"
 #include "restitution.h"
 
+#include <algorithm>
+
 namespace impulse {
 
 namespace {
 
-// The separation of every candidate pair at the bodies' current poses; true
-// when some pair is deeper than d.
-bool measure_gaps(World& world, TimeSteppingScratch& s) {
+// The separation of every candidate pair at the bodies' current poses; returns
+// the deepest overlap (0 when none).
+double measure_gaps(World& world, TimeSteppingScratch& s) {
     for (std::size_t i = 0; i < world.bodies.size(); ++i) {
         s.poses[i] = transform_of(world.bodies[i].state);
     }
     s.pair_gap.resize(s.pairs.size());
-    bool deep = false;
+    double deepest = 0.0;
     for (std::size_t p = 0; p < s.pairs.size(); ++p) {
         const std::size_t a = static_cast<std::size_t>(s.pairs[p].a);
         const std::size_t b = static_cast<std::size_t>(s.pairs[p].b);
         ++world.work.narrow_phase_queries;
         s.pair_gap[p] =
             separation(world.bodies[a].shape, s.poses[a], world.bodies[b].shape, s.poses[b]);
-        deep = deep || s.pair_gap[p] < -world.solver.contact_tolerance;
+        deepest = std::max(deepest, -s.pair_gap[p]);
     }
-    return deep;
+    return deepest;
 }
 
-// Moves the bodies of pair p apart by h M^-1 J^T m, where m solves the pair's
-// own position problem, w = A m + g / h >= 0 over its points within d, at the
-// poses as they are now (earlier pairs of this pass may have moved them).
-void separate_pair(World& world, double h, TimeSteppingScratch& s, std::size_t p) {
+// The groups the guard solves together: bodies joined through pairs closer
+// than `margin`, so a body squeezed between the floor and a heavy neighbour is
+// moved with both of them in one solve, not back and forth between them one
+// pair at a time. The margin (d plus twice the deepest overlap) is as far as
+// the guard's moves can carry a body: a pair that far apart is held in the
+// same solve, so moving one overlap apart cannot make another.
+void find_groups(const std::vector<Body>& bodies, TimeSteppingScratch& s, double margin) {
+    s.guard_pairs.clear();
+    s.guard_links.clear();
+    for (std::size_t p = 0; p < s.pairs.size(); ++p) {
+        if (s.pair_gap[p] <= margin) {
+            s.guard_pairs.push_back(static_cast<int>(p));
+            s.guard_links.push_back({s.pairs[p].a, s.pairs[p].b});
+        }
+    }
+    find_islands(bodies, s.guard_links, s.guard_groups, s.island_scratch);
+}
+
+bool has_deep_pair(const World& world, const TimeSteppingScratch& s, int first, int last) {
+    for (int l = first; l < last; ++l) {
+        const int p = s.guard_pairs[static_cast<std::size_t>(
+            s.guard_groups.links_of[static_cast<std::size_t>(l)])];
+        if (s.pair_gap[static_cast<std::size_t>(p)] < -world.solver.contact_tolerance) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// Group g's position problem: every point within `margin` of its pairs, at
+// the poses as they are now, w = A m + g / h >= 0, m >= 0, m . w = 0; its bodies then
+// move by h M^-1 J^T m (positions only, velocities kept).
+void separate_group(World& world, double h, TimeSteppingScratch& s, int g, double margin) {
     const double d = world.solver.contact_tolerance;
-    const CandidatePair& pair = s.pairs[p];
-    const std::size_t a = static_cast<std::size_t>(pair.a);
-    const std::size_t b = static_cast<std::size_t>(pair.b);
-    Body& body_a = world.bodies[a];
-    Body& body_b = world.bodies[b];
-    ++world.work.narrow_phase_queries;
-    const Manifold m = collide(body_a.shape, transform_of(body_a.state), body_b.shape,
-                               transform_of(body_b.state), d, world.solver.vertex_normal);
+    const std::size_t gi = static_cast<std::size_t>(g);
     IslandProblem& problem = s.problem;
     problem.points.clear();
     problem.q.clear();
-    bool deep = false;
-    for (int k = 0; k < m.point_count; ++k) {
-        const Contact& c = m.points[static_cast<std::size_t>(k)];
-        problem.points.push_back(candidate_point(world, static_cast<int>(p), pair.a, pair.b, c));
-        problem.q.push_back(c.separation / h);
-        deep = deep || c.separation < -d;
-    }
-    if (!deep) {
-        return;
+    for (int l = s.guard_groups.link_offsets[gi]; l < s.guard_groups.link_offsets[gi + 1]; ++l) {
+        const int p = s.guard_pairs[static_cast<std::size_t>(
+            s.guard_groups.links_of[static_cast<std::size_t>(l)])];
+        const CandidatePair& pair = s.pairs[static_cast<std::size_t>(p)];
+        const std::size_t a = static_cast<std::size_t>(pair.a);
+        const std::size_t b = static_cast<std::size_t>(pair.b);
+        ++world.work.narrow_phase_queries;
+        const Manifold m = collide(world.bodies[a].shape, s.poses[a], world.bodies[b].shape,
+                                   s.poses[b], margin, world.solver.vertex_normal);
+        for (int k = 0; k < m.point_count; ++k) {
+            const Contact& c = m.points[static_cast<std::size_t>(k)];
+            ContactPoint point = candidate_point(world, p, pair.a, pair.b, c);
+            point.rn_a = 0.0; // translation only (see guard_overlaps)
+            point.rn_b = 0.0;
+            problem.points.push_back(point);
+            problem.q.push_back(c.separation / h);
+        }
     }
     problem.lambda.assign(problem.points.size(), 0.0);
-    if (!solve_island(world, problem, d / h).solved) {
+    if (problem.points.empty() || !solve_island(world, problem, d / h).solved) {
         return; // the overlap stays, and max-overlap judges it
     }
-    // The correction as a velocity change, applied to positions only.
-    const BodyState before_a = body_a.state;
-    const BodyState before_b = body_b.state;
-    for (Body* body : {&body_a, &body_b}) {
-        body->state.velocity = {};
-        body->state.angular_velocity = 0.0;
+    const int b0 = s.guard_groups.body_offsets[gi];
+    const int b1 = s.guard_groups.body_offsets[gi + 1];
+    // The correction as a velocity change from rest, applied to positions
+    // only; the energy guard then checks these bodies' islands (a lift adds
+    // energy).
+    for (int k = b0; k < b1; ++k) {
+        const std::size_t b =
+            static_cast<std::size_t>(s.guard_groups.bodies[static_cast<std::size_t>(k)]);
+        s.guard_saved[b] = world.bodies[b].state;
+        world.bodies[b].state.velocity = {};
+        world.bodies[b].state.angular_velocity = 0.0;
     }
     for (std::size_t j = 0; j < problem.points.size(); ++j) {
         if (problem.lambda[j] > 0.0) {
             const ContactPoint& point = problem.points[j];
-            apply_impulse(body_a, body_b, point.contact.point, point.contact.normal,
-                          problem.lambda[j]);
+            Body& a = world.bodies[static_cast<std::size_t>(point.a)];
+            Body& b = world.bodies[static_cast<std::size_t>(point.b)];
+            const Vec2 push = problem.lambda[j] * point.contact.normal;
+            a.state.velocity += a.inv_mass * push;
+            b.state.velocity -= b.inv_mass * push;
         }
     }
-    for (auto [body, before] : {std::pair<Body*, const BodyState*>{&body_a, &before_a},
-                                std::pair<Body*, const BodyState*>{&body_b, &before_b}}) {
-        BodyState& state = body->state;
-        state.position = before->position + h * state.velocity;
-        state.angle = before->angle + h * state.angular_velocity;
-        state.velocity = before->velocity;
-        state.angular_velocity = before->angular_velocity;
+    for (int k = b0; k < b1; ++k) {
+        const std::size_t b =
+            static_cast<std::size_t>(s.guard_groups.bodies[static_cast<std::size_t>(k)]);
+        const BodyState& before = s.guard_saved[b];
+        BodyState& state = world.bodies[b].state;
+        state.position = before.position + h * state.velocity;
+        state.angle = before.angle;
+        state.velocity = before.velocity;
+        state.angular_velocity = before.angular_velocity;
+        s.guard_moved[b] = 1;
     }
 }
 
 } // namespace
 
 void guard_overlaps(World& world, double h, TimeSteppingScratch& s) {
+    s.guard_moved.assign(world.bodies.size(), 0);
+    s.guard_saved.resize(world.bodies.size());
     for (int pass = 0; pass < max_overlap_guard_passes; ++pass) {
-        if (!measure_gaps(world, s)) {
+        const double deepest = measure_gaps(world, s);
+        const double d = world.solver.contact_tolerance;
+        if (!(deepest > d)) {
             return;
         }
+        const double margin = d + 2.0 * deepest;
         ++world.work.overlap_guard_passes;
-        for (std::size_t p = 0; p < s.pairs.size(); ++p) {
-            if (s.pair_gap[p] < -world.solver.contact_tolerance) {
-                separate_pair(world, h, s, p);
+        find_groups(world.bodies, s, margin);
+        for (int g = 0; g < s.guard_groups.count(); ++g) {
+            const std::size_t gi = static_cast<std::size_t>(g);
+            if (has_deep_pair(world, s, s.guard_groups.link_offsets[gi],
+                              s.guard_groups.link_offsets[gi + 1])) {
+                separate_group(world, h, s, g, margin);
             }
         }
     }

@@ -10,19 +10,26 @@
 
 namespace impulse {
 
-// Passes at most. For one pair each pass removes the linear part of the
-// overlap, leaving the rotation's second-order remainder, about (omega h)^2 of
-// the one before; in a jammed pile moving one pair apart presses its
-// neighbours together, and the passes converge as Gauss-Seidel does.
+// Passes at most. The guard moves bodies by translation only, in which a
+// polygon pair's separation is linear until the closest features change and a
+// circle's normal turns only at second order, so each pass leaves a small
+// fraction of the overlap before it (a turning correction of a small
+// spinning box swings its corner back in: measured, it did not converge).
 inline constexpr int max_overlap_guard_passes = 4;
 
 // At the step's end poses, while some candidate pair is deeper than
-// contact_tolerance (at most max_overlap_guard_passes times): each such pair
-// in (a, b) order, at the poses as the pairs before it left them, solves its
-// own w = A m + g / h >= 0, m >= 0, m . w = 0 over its points within
-// contact_tolerance (at most two: a direct solve) and moves its two bodies by
-// h M^-1 J^T m, a nonlinear Gauss-Seidel on positions. Counts passes in
-// world.work.overlap_guard_passes.
+// contact_tolerance d (at most max_overlap_guard_passes times): the bodies
+// joined through candidate pairs within d (touching or deeper) form groups,
+// and every group with a pair deeper than d solves its own position problem,
+// w = A m + g / h >= 0, m >= 0, m . w = 0 over all its points within d plus
+// twice the deepest overlap (by solve_island: pivoting up to 16 points, MPRGP
+// above), with A the translational part of J M^-1 J^T, and moves its bodies
+// by h M^-1 J^T m (positions only; angles and velocities untouched). Solving a group at
+// once moves a body squeezed between the floor and a heavy neighbour together
+// with that neighbour; pair by pair, the two would pass the overlap back and
+// forth, shrinking it only by the mass ratio per pass. Marks the bodies moved
+// in s.guard_moved (the energy guard checks their islands) and counts passes
+// in world.work.overlap_guard_passes.
 void guard_overlaps(World& world, double h, TimeSteppingScratch& s);
 
 } // namespace impulse

@@ -6,6 +6,7 @@
 #include "broad_phase.h"
 #include "contact_problem.h"
 #include "islands.h"
+#include "mprgp.h"
 #include "pgs.h"
 
 #include <vector>
@@ -35,6 +36,7 @@ struct IslandProblem {
     std::vector<double> sorted_q;
     std::vector<double> sorted_lambda;
     PgsScratch pgs;
+    MprgpScratch mprgp;
 };
 
 struct TimeSteppingScratch {
@@ -58,8 +60,15 @@ struct TimeSteppingScratch {
     std::vector<char> in_island;       // per body
     std::vector<double> island_energy; // per island: energy at the step's start
     std::vector<char> island_pushed;   // per island: some impulse acted
+    std::vector<char> guard_moved;     // per body: the overlap guard moved it
     IslandProblem problem;
     std::vector<double> pair_gap; // the overlap guard's separation of each candidate pair
+    // The overlap guard's groups: candidate pairs within contact_tolerance
+    // (indices into pairs), their links, and the bodies they join.
+    std::vector<int> guard_pairs;
+    std::vector<IslandLink> guard_links;
+    Islands guard_groups;
+    std::vector<BodyState> guard_saved; // per body: its state before a group's move
 };
 
 } // namespace impulse

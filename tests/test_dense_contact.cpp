@@ -6,6 +6,7 @@
 // exactly g sin(theta) per step; a box wedged between a ramp and a wall rests
 // in the closed-form pose with the closed-form forces; a drop converges at
 // first order; world and local stepping give the same bits.
+#include "contact_candidates.h"
 #include "manifold.h"
 #include "support.h"
 #include "world.h"
@@ -63,13 +64,13 @@ double impulse_under(const World& before, const World& after, std::size_t first,
 
 } // namespace
 
-// Hidden until the engine meets it: with 20 points the island goes to the
-// projected Gauss-Seidel solver, whose first step stops at the 200-sweep cap
-// with the impulses 20% off, so boxes drift sideways by 4e-5 m and impacts
-// appear (a stack of eight, 16 points, solved by pivoting, meets it to 6e-15).
+// With 20 points the island goes to the iterative solver. Projected
+// Gauss-Seidel stopped at its 200-sweep cap with the impulses 20% off; MPRGP
+// (conjugate gradients on the free set) ends a 20-unknown problem in at most
+// 20 products to rounding, so the pivoting solver's 1e-12 holds here too.
 TEST_CASE(
     "each step the impulse under box k of a stack of ten is h g times the mass at and above k",
-    "[.][dense-contact-open]") {
+    "[dense-contact]") {
     // Eq. 15: at rest v = 0, so phase 2's holding LCP gives each contact the
     // impulse that cancels gravity's kick on everything it carries.
     std::vector<Body> bodies{static_body(make_box(5.0, 0.5), {0.0, -0.5})};
@@ -333,8 +334,8 @@ Shape random_shape(std::mt19937_64& rng, double size) {
 
 struct PileLayout {
     int columns = 1;
-    double spacing = 0.42;                   // more than every body's bounding diameter
-    double half_width = 0.21;                // the walls' inner faces are at x = +-half_width
+    double spacing = 0.6;    // more than every bounding diameter (a 0.2 x 0.2 box: 0.566)
+    double half_width = 0.3; // the walls' inner faces are at x = +-half_width
     double floor_slope = 0.2617993877991494; // 15 degrees
     double lattice_base = 0.0;               // the V's height at the walls: row 0 sits above it
     // The top row's height above the V's lowest point, where a body can fall to.
@@ -352,6 +353,10 @@ PileLayout layout_of(int count) {
     layout.half_width = 0.5 * layout.columns * layout.spacing;
     layout.lattice_base = layout.half_width * std::tan(layout.floor_slope);
     return layout;
+}
+
+double bounding_radius(const Shape& shape) {
+    return shape.type == ShapeType::circle ? shape.radius : rotation_radius(shape);
 }
 
 World random_pile(const PileCase& pile) {
@@ -375,7 +380,9 @@ World random_pile(const PileCase& pile) {
         const double size = test::uniform(rng, 0.04, 0.2);
         const Shape shape = random_shape(rng, size);
         const double mass = test::log_uniform(rng, 0.1, 10.0);
-        const double room = 0.5 * layout.spacing - size; // the shift that keeps it in its site
+        // Kept in its site at any angle: by its bounding circle (a box's
+        // corner reaches past its half size).
+        const double room = 0.5 * layout.spacing - bounding_radius(shape);
         const double x =
             -w + layout.spacing * ((i % layout.columns) + 0.5) + test::uniform(rng, -room, room);
         const double y = layout.lattice_base + layout.spacing * ((i / layout.columns) + 0.5);
@@ -394,17 +401,6 @@ int steps_to_rest(const PileCase& pile) {
     const double t1 = std::sqrt(2.0 * layout_of(pile.count).top(pile.count) / g);
     const double seconds = std::max(8.0, t1 * (1.0 + pile.e) / (1.0 - pile.e) + 2.0);
     return static_cast<int>(std::ceil(seconds / h60));
-}
-
-double bounding_radius(const Shape& shape) {
-    if (shape.type == ShapeType::circle) {
-        return shape.radius;
-    }
-    double r = 0.0;
-    for (int i = 0; i < shape.polygon.count; ++i) {
-        r = std::max(r, length(shape.polygon.vertices[static_cast<std::size_t>(i)]));
-    }
-    return r;
 }
 
 // The deepest interpenetration (-separation, 0 when nothing overlaps) of any
@@ -484,10 +480,10 @@ double free_flight_gain(const World& world, double h) {
 }
 
 // Runs the pile at 60 Hz, checking every step: finite, no overlap deeper than
-// 1e-6 m, energy not gained beyond rounding (and Euler's own flight); at the
-// end (steps_to_rest) at rest, kinetic energy at most 1e-9 of the energy the
-// fall released.
-void check_pile_settles(const PileCase& pile) {
+// 1e-6 m, energy not gained beyond rounding (and Euler's own flight); with
+// `require_rest`, at the end (steps_to_rest) at rest, kinetic energy at most
+// 1e-9 of the energy the fall released.
+void check_pile_settles(const PileCase& pile, bool require_rest) {
     World world = random_pile(pile);
     INFO("seed " << pile.seed << ", " << pile.count << " bodies, e " << pile.e << ", integrator "
                  << static_cast<int>(pile.integrator) << ", stepping "
@@ -524,7 +520,9 @@ void check_pile_settles(const PileCase& pile) {
     CHECK(worst_gain <= 0.0);
     const double released = start.total() - last.potential;
     INFO("kinetic " << last.kinetic << " J of " << released << " J released");
-    CHECK(last.kinetic <= 1e-9 * released);
+    if (require_rest) {
+        CHECK(last.kinetic <= 1e-9 * released);
+    }
 }
 
 std::vector<PileCase> sweep_cases(int count, std::uint64_t first_seed) {
@@ -574,22 +572,27 @@ TEST_CASE("world and local stepping give the same bits under time-stepping", "[d
     }
 }
 
-// Hidden until the engine meets it: on e1's engine of 05:00 UTC every one of
-// these piles breaks an invariant (overlaps of 5 mm to 4 cm, energy gained,
-// kinetic energy above 1e-5 of the energy released at the end).
-TEST_CASE("seeded random piles settle with every invariant: every integrator, both steppings",
-          "[.][dense-contact-open]") {
-    // Eight piles cover the four integrators twice, each stepping four times
-    // and every e in {0, 0.3, 0.6, 0.9}, in a few seconds; the
-    // [dense-contact-sweep] test runs 48.
+TEST_CASE("seeded random piles keep every invariant: every integrator, both steppings",
+          "[dense-contact]") {
+    // Every integrator twice, each stepping four times, every e in {0, 0.3,
+    // 0.6, 0.9}, in a few seconds; [dense-contact-sweep] runs 48.
     for (const PileCase& pile : sweep_cases(8, 1)) {
-        check_pile_settles(pile);
+        check_pile_settles(pile, false);
     }
 }
 
-TEST_CASE("the larger sweep: 48 seeded random piles settle with every invariant",
+TEST_CASE("the larger sweep: 48 seeded random piles keep every invariant",
           "[.][dense-contact-sweep]") {
     for (const PileCase& pile : sweep_cases(48, 1001)) {
-        check_pile_settles(pile);
+        check_pile_settles(pile, false);
+    }
+}
+
+// Hidden while the engine misses it: frictionless piles creep. At rest (K <=
+// 1e-9 released from then on) at 11.6, 21.0, > 40 (eight bodies sliding at
+// 2-5 mm/s at 40 s), 8.7, 8.3, 11.3, 5.9 and 5.7 s.
+TEST_CASE("seeded random piles come to rest by max(8 s, t_inf + 2 s)", "[.][dense-contact-rest]") {
+    for (const PileCase& pile : sweep_cases(8, 1)) {
+        check_pile_settles(pile, true);
     }
 }
