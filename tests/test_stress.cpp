@@ -99,28 +99,12 @@ std::string message_of(const Scene& scene) {
 
 } // namespace
 
-namespace {
-
-// Pile rows whose targets the engine misses today (issue 14, open): the unit
-// pass over the matrix leaves them to the hidden [stress-piles-open] test
-// (test_stress_piles.cpp), and `impulse stress` (label stress) shows them
-// failing, as they do. Measured at 05:35 UTC on e1's PGS engine (7738ffe):
-// pile-column-50 sinks 6.2 cm and overlaps 4.1 mm, the support under box-48 in
-// its first step is 0.1% of the weight above (the direct solver of e1 653b97e
-// held it to 4e-11 m drift and 4e-12 of the weight); pile-discs-1000 (slow,
-// left out anyway) overlaps 5.2 cm at t = 1 s, and is at rest and never gains energy.
-bool open_pile_row(const StressCase& c) {
-    return c.name == "pile-column-50";
-}
-
-} // namespace
-
 TEST_CASE("every case of the stress matrix holds or is refused as expected", "[unit][stress]") {
     const std::vector<StressCase> cases = stress_cases();
     REQUIRE(cases.size() >= 20);
     int refused = 0;
     for (const StressCase& c : cases) {
-        if (c.slow || open_pile_row(c)) {
+        if (c.slow) {
             continue; // impulse stress runs it, under the stress label
         }
         const StressResult r = run_stress_case(c);
