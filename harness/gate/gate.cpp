@@ -270,11 +270,19 @@ Blessing bless_scene(const GateRoot& root, const std::string& scene_path) {
 
 Blessing bless_scene(const Project& project, const EngineSpec& engine,
                      const std::string& scene_path) {
+    Blessing blessing = prepare_blessing(project, engine, scene_path);
+    write_blessing(blessing);
+    return blessing;
+}
+
+Blessing prepare_blessing(const Project& project, const EngineSpec& engine,
+                          const std::string& scene_path) {
     Blessing blessing;
     blessing.name = scene_stem(scene_path);
     const Scene scene = load_scene_for_golden(project, scene_path);
     blessing.name = scene.name;
     blessing.golden_file = golden_path(project, engine, scene.name);
+    blessing.golden_folder = golden_folder(project, engine);
     const std::optional<Trajectory> ran = run_in(engine, scene, blessing.summary);
     if (!ran) {
         blessing.outcome = Blessing::Outcome::skipped;
@@ -290,11 +298,11 @@ Blessing bless_scene(const Project& project, const EngineSpec& engine,
                            " of the scene's own expectations, so it is not blessed:\n" + failed;
         return blessing;
     }
-    const std::string text = write_trajectory(trajectory);
+    std::string text = write_trajectory(trajectory);
     // Never a golden that check would refuse.
     require_readable_size(text, blessing.golden_file);
 
-    refuse_case_variant_golden(golden_folder(project, engine), scene_path, scene.name);
+    refuse_case_variant_golden(blessing.golden_folder, scene_path, scene.name);
     if (!entry_exists(blessing.golden_file)) {
         blessing.outcome = Blessing::Outcome::created;
     } else {
@@ -322,16 +330,26 @@ Blessing bless_scene(const Project& project, const EngineSpec& engine,
             }
         }
     }
+    blessing.text = std::move(text);
+    return blessing;
+}
+
+void write_blessing(Blessing& blessing) {
+    if (blessing.outcome != Blessing::Outcome::created &&
+        blessing.outcome != Blessing::Outcome::changed) {
+        return;
+    }
     std::error_code error;
-    fs::create_directories(golden_folder(project, engine), error);
+    fs::create_directories(blessing.golden_folder, error);
     try {
-        write_file_atomically(blessing.golden_file, text);
+        write_file_atomically(blessing.golden_file, blessing.text);
     } catch (const InputError& e) {
         // The scene is fine; the folder or the disk is not.
         blessing.outcome = Blessing::Outcome::unwritten;
         blessing.summary = e.what();
     }
-    return blessing;
+    blessing.text.clear();
+    blessing.text.shrink_to_fit();
 }
 
 } // namespace impulse::harness
