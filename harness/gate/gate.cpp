@@ -169,6 +169,7 @@ SceneCheck check_scene(const Project& project, const EngineSpec& engine,
     SceneCheck check;
     check.scene_file = scene_path;
     check.name = scene_stem(scene_path);
+    check.regen = project.regen;
     if (project.engines.size() > 1) {
         check.engine = engine.name;
     }
