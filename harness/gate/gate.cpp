@@ -290,6 +290,13 @@ Blessing prepare_blessing(const Project& project, const EngineSpec& engine,
         return blessing;
     }
     const Trajectory& trajectory = *ran;
+    if (trajectory.partial) {
+        // An engine of the protocol can hand one back; it is never a golden.
+        throw InputError(scene.file, "",
+                         "the run stopped at t = " + format_double(trajectory.partial->t) + " s (" +
+                             trajectory.partial->reason +
+                             "): a partial trajectory is never a golden");
+    }
     int failed_count = 0;
     const std::string failed =
         failed_expectations(evaluate_expectations(scene, trajectory), failed_count);
