@@ -44,6 +44,23 @@ bool finite_event(const TrajectoryEvent& e) {
     throw StoppedRun(scene.file, cause, std::move(trajectory));
 }
 
+// The run stops, with a sentence, at the first event that could take the
+// trajectory past the limit: the events so far fit, the step's others are
+// dropped.
+void stop_past_limit(const Scene& scene, Trajectory& trajectory, const TrajectorySize& size,
+                     const TrajectoryEvent& e) {
+    try {
+        require_within_trajectory_limit(
+            size, scene.file, "",
+            "the run stopped at t = " + format_double(e.t) + " s: its frames and " +
+                std::to_string(trajectory.events.size() + 1) + " collision events so far",
+            true);
+    } catch (const InputError& error) {
+        trajectory.partial = TrajectoryPartial{error.message(), trajectory.frames.back().front()};
+        throw StoppedRun(scene.file, error, std::move(trajectory));
+    }
+}
+
 } // namespace
 
 Trajectory record(Simulator& simulator, const Scene& scene) {
@@ -101,23 +118,10 @@ Trajectory record(Simulator& simulator, const Scene& scene) {
             stop(simulator, scene, trajectory, e);
         }
         for (TrajectoryEvent& e : simulator.take_events()) {
-            // Events are not known up front: the run stops, with a sentence,
-            // at the first that could take the trajectory past the limit.
+            // Events are not known up front.
             size = size + event_size_bound(e.a.size() + e.b.size());
             if (!size.within(limit)) {
-                try {
-                    require_within_trajectory_limit(
-                        size, scene.file, "",
-                        "the run stopped at t = " + format_double(e.t) + " s: its frames and " +
-                            std::to_string(trajectory.events.size() + 1) +
-                            " collision events so far",
-                        true);
-                } catch (const InputError& error) {
-                    // The events so far fit; the step's others are dropped.
-                    trajectory.partial =
-                        TrajectoryPartial{error.message(), trajectory.frames.back().front()};
-                    throw StoppedRun(scene.file, error, std::move(trajectory));
-                }
+                stop_past_limit(scene, trajectory, size, e);
             }
             trajectory.events.push_back(std::move(e));
         }
