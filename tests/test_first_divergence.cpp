@@ -213,3 +213,31 @@ TEST_CASE("check, its JUnit and summary.md and diff all name the collision at t1
     CHECK(d.out.find("first divergence: events[0].impulse at t = ") != std::string::npos);
     CHECK(d.out.find("differs by 1 ULP") != std::string::npos);
 }
+
+TEST_CASE("check names a cause two scenes share in one line", "[first-divergence]") {
+    TempDir temp;
+    const fs::path scenes = temp.dir / "harness" / "scenes";
+    fs::create_directories(scenes);
+    for (const char* name : {"drop-box", "drop-circle"}) {
+        fs::copy_file(fs::path(IMPULSE_SOURCE_DIR) / "harness" / "scenes" /
+                          (std::string(name) + ".json"),
+                      scenes / (std::string(name) + ".json"));
+    }
+    const std::string root = temp.dir.string();
+    REQUIRE(run_tool({"bless", "--root", root}).exit_code == 0);
+    // The same "engine change" in both: the first bounce's impulse 1 ULP off.
+    for (const char* name : {"drop-box", "drop-circle"}) {
+        const fs::path golden = temp.dir / "goldens" / (std::string(name) + ".json");
+        Trajectory t = read_trajectory_file(golden.string(), "a golden");
+        REQUIRE(!t.events.empty());
+        t.events[0].impulse = next_up(t.events[0].impulse);
+        spit(golden, write_trajectory(t));
+    }
+    const fs::path report = temp.dir / "report";
+    const Outcome o = run_tool({"check", "--root", root, "--report", report.string()});
+    INFO(o.out << o.err);
+    CHECK(o.exit_code == 1);
+    const std::string line = "2 scenes start diverging at events[0].impulse: drop-box, drop-circle";
+    CHECK(o.out.find(line) != std::string::npos);
+    CHECK(slurp(report / "summary.md").find(line) != std::string::npos);
+}

@@ -187,13 +187,21 @@ TEST_CASE("python-seed behind the gate: bless, check, a change of physics named,
     CHECK(y.now ==
           Approx(centre_after_impact(scene, 1.1 * drop.rebound_speed(1), s)).epsilon(1e-9));
 
-    // regen accepts the change where no exact answer says otherwise, and
-    // refuses to bless a run that breaks the scene's own exact answers.
+    // regen refuses to bless a run that breaks the scene's own exact
+    // answers, and then writes no golden at all (all or nothing).
+    const std::string bounce_golden = slurp(p.golden("bounce"));
     const Outcome regen = run_tool_in(p.dir, {"regen"});
     require_exit(regen, 1);
-    CHECK(has(regen.out, "changed    bounce"));
+    CHECK(has(regen.out, "held back  bounce: would be changed"));
     CHECK(has(regen.out, "REFUSED    drop-circle: the run breaks "));
     CHECK(has(regen.out, "REFUSED    head-on: the run breaks "));
+    CHECK(has(regen.out, "no golden was written"));
+    CHECK(slurp(p.golden("bounce")) == bounce_golden);
+    // --partial accepts the change where no exact answer says otherwise.
+    const Outcome partial = run_tool_in(p.dir, {"regen", "--partial"});
+    require_exit(partial, 1);
+    CHECK(has(partial.out, "changed    bounce"));
+    CHECK(has(partial.out, "drop-circle and head-on were not regenerated"));
     CHECK(slurp(p.golden("drop-circle")) == drop_golden);
     require_exit(run_tool_in(p.dir, {"check", "bounce"}), 0);
 

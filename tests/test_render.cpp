@@ -336,8 +336,9 @@ TEST_CASE("summary_markdown: verdict, one table row per scene, details of failur
           std::string::npos);
     // Details in a fence longer than the backticks inside them.
     CHECK(md.find("````text\nfirst divergence: high.y at t = 0.5\n") != std::string::npos);
-    CHECK(md.find("### mismatch: failed") != std::string::npos);
-    CHECK(md.find("### render-test") == std::string::npos);
+    // Each failure's details folded under its name; a passed scene has none.
+    CHECK(md.find("<details><summary>mismatch: failed</summary>") != std::string::npos);
+    CHECK(md.find("<details><summary>render-test") == std::string::npos);
     CHECK(md.find('\x01') == std::string::npos);
     CHECK(summary_markdown({}).find("0 scenes") != std::string::npos);
 }

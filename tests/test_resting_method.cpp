@@ -293,7 +293,9 @@ TEST_CASE("without resting, the end of a cascade names \"resting\": true", "[res
     CHECK((has(o.err, "(a Zeno cascade)") || has(o.err, "are in resting contact")));
     CHECK(has(o.err, R"(set "resting": true in the solver block)"));
     CHECK_FALSE(has(o.err, "seed's"));
-    CHECK_FALSE(fs::exists(out));
+    // What was simulated up to the stop is written, marked partial (docs/formats.md).
+    REQUIRE(fs::exists(out));
+    CHECK(has(slurp(out), "\"partial\": {\"reason\": "));
 }
 
 // The plan's five discs of mixed sizes (1:5) and masses (1:100) in an open
@@ -326,7 +328,9 @@ TEST_CASE("with resting_method events, a pile's failure names auto and time-step
            has(o.err, "contact problem")));
     CHECK(has(o.err, R"(use "resting_method": "auto" or "time-stepping")"));
     CHECK_FALSE(has(o.err, "seed's"));
-    CHECK_FALSE(fs::exists(out));
+    // What was simulated up to the stop is written, marked partial (docs/formats.md).
+    REQUIRE(fs::exists(out));
+    CHECK(has(slurp(out), "\"partial\": {\"reason\": "));
 }
 
 // The time a sentence states after `marker` ("at t = "), in seconds.

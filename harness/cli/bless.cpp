@@ -15,7 +15,7 @@ namespace impulse::harness::cli {
 namespace {
 
 constexpr const char* bless_help =
-    R"(usage: impulse bless [SCENE...] [--root DIR] [--engine NAME] [--prune]
+    R"(usage: impulse bless [SCENE...] [--root DIR] [--engine NAME] [--prune] [--partial]
 
 Runs scenes (every scene of the project when none is named) in the project's
 engines and writes their goldens to GOLDENS/NAME.json (GOLDENS/ENGINE/NAME.json
@@ -32,8 +32,14 @@ was new, changed (and what moved, by how much), unchanged and removed.
                   impulse.json found from the current folder upwards, else .)
   --engine NAME   only the project's engine NAME
   --prune         delete goldens whose scene no longer exists
+  --partial       write the other goldens even when a scene refuses, saying
+                  which goldens that leaves inconsistent
   --quiet      no progress bar (drawn on standard error only when that is a
                terminal, after about a second of work)
+
+All or nothing: when any scene refuses (it breaks its own expectations, or it
+cannot be loaded or run), no golden is written and nothing is pruned; the
+others are listed as held back. --partial writes them anyway.
 
 Refuses to run in CI mode (CI set to anything but empty, 0 or false): CI never
 writes goldens. Exit: 0 done, 1 a scene was refused, 2 bad input or a golden
@@ -41,7 +47,7 @@ that could not be written.
 )";
 
 constexpr const char* regen_help =
-    R"(usage: impulse regen [SCENE...] [--engine NAME] [--prune] [--root DIR]
+    R"(usage: impulse regen [SCENE...] [--engine NAME] [--prune] [--partial] [--root DIR]
 
 Regenerates the goldens of the project found from the current folder (the
 first impulse.json upwards, as git finds .git; --root DIR names it): runs the
@@ -53,8 +59,13 @@ name (the project file's "regen"), after an intended physics change.
 
   --engine NAME   only the project's engine NAME
   --prune         delete goldens whose scene no longer exists
+  --partial       write the other goldens even when a scene refuses, saying
+                  which goldens that leaves inconsistent
   --root DIR      the project's folder
   --quiet         no progress bar
+
+All or nothing: when any scene refuses (it breaks its own expectations, or it
+cannot be loaded or run), no golden is written and nothing is pruned.
 
 Refused in CI mode. Exit: 0 done, 1 a scene was refused (it breaks its own
 expectations), 2 bad input or a golden that could not be written.
@@ -117,32 +128,98 @@ struct BlessCounts {
     }
 };
 
-// Every (engine, scene) pair, with the progress bar erased before returning.
-BlessCounts bless_all(const Project& project, const std::vector<EngineSpec>& engines,
-                      const std::vector<std::string>& paths, bool quiet, std::ostream& out,
-                      std::ostream& err) {
-    BlessCounts counts;
+// One scene's prepared blessing, named as the report names it.
+struct Prepared {
+    std::string name; // ENGINE/NAME when the project has several engines
+    Blessing blessing;
+};
+
+struct Preparation {
+    std::vector<Prepared> ready;
+    // Scenes that refuse to be blessed: broken ones (with their sentence
+    // printed already) and those that break their own expectations.
+    std::vector<std::string> refusing;
+    int broken = 0;
+};
+
+// Runs every (engine, scene) pair and decides each golden, writing none;
+// the progress bar is erased before returning.
+Preparation prepare_all(const Project& project, const std::vector<EngineSpec>& engines,
+                        const std::vector<std::string>& paths, bool quiet, std::ostream& err) {
+    Preparation p;
     Progress progress("bless", progress_wanted(quiet));
     progress.set_total(paths.size() * engines.size(), "scenes");
     const bool several = project.engines.size() > 1;
     for (const EngineSpec& engine : engines) {
         for (const std::string& path : paths) {
-            progress.set_item(std::filesystem::path(path).stem().string());
+            const std::string stem = std::filesystem::path(path).stem().string();
+            progress.set_item(stem);
             try {
-                const Blessing b = bless_scene(project, engine, path);
-                progress.advance();
-                progress.without_bar(
-                    [&] { report(b, several ? engine.name + "/" + b.name : b.name, out); });
-                counts.add(b.outcome);
-                if (b.outcome == Blessing::Outcome::unwritten) {
-                    progress.without_bar([&] { err << b.summary << "\n" << std::flush; });
+                Blessing b = prepare_blessing(project, engine, path);
+                const std::string name = several ? engine.name + "/" + b.name : b.name;
+                if (b.outcome == Blessing::Outcome::refused) {
+                    p.refusing.push_back(name);
                 }
+                p.ready.push_back({name, std::move(b)});
             } catch (const InputError& e) {
-                ++counts.broken;
-                progress.advance();
+                ++p.broken;
+                p.refusing.push_back(several ? engine.name + "/" + stem : stem);
                 progress.without_bar([&] { err << e.what() << "\n" << std::flush; });
             }
+            progress.advance();
         }
+    }
+    return p;
+}
+
+// "a, b and c".
+std::string listed(const std::vector<std::string>& names) {
+    std::string text;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        text += (i == 0 ? "" : i + 1 == names.size() ? " and " : ", ") + names[i];
+    }
+    return text;
+}
+
+bool would_write(const Blessing& b) {
+    return b.outcome == Blessing::Outcome::created || b.outcome == Blessing::Outcome::changed;
+}
+
+// Writes the prepared goldens, or, when a scene refuses and `partial` is
+// not given, none of them: a goldens folder half from one engine and half
+// from another would pass the gate for the wrong reason.
+BlessCounts write_prepared(Preparation& p, bool partial, std::ostream& out, std::ostream& err) {
+    BlessCounts counts;
+    counts.broken = p.broken;
+    const bool hold = !p.refusing.empty() && !partial;
+    int held = 0;
+    for (Prepared& item : p.ready) {
+        Blessing& b = item.blessing;
+        if (hold && would_write(b)) {
+            ++held;
+            out << "  held back  " << item.name << ": would be "
+                << (b.outcome == Blessing::Outcome::created ? "new" : "changed") << "\n";
+            continue;
+        }
+        write_blessing(b);
+        report(b, item.name, out);
+        counts.add(b.outcome);
+        if (b.outcome == Blessing::Outcome::unwritten) {
+            err << b.summary << "\n" << std::flush;
+        }
+    }
+    if (hold) {
+        out << "no golden was written: " << listed(p.refusing)
+            << (p.refusing.size() == 1 ? " refuses" : " refuse") << " to be blessed, and " << held
+            << " other golden" << (held == 1 ? " stays" : "s stay")
+            << " as it was; fix the refusing scenes, or write the others with --partial\n";
+    } else if (!p.refusing.empty()) {
+        int written = counts.created + counts.changed;
+        out << "--partial: " << written << " golden" << (written == 1 ? " was" : "s were")
+            << " written, but " << listed(p.refusing) << (p.refusing.size() == 1 ? " was" : " were")
+            << " not regenerated and still " << (p.refusing.size() == 1 ? "holds" : "hold")
+            << " the old motion, so the goldens are inconsistent until "
+            << (p.refusing.size() == 1 ? "it is" : "they are") << " fixed and regenerated\n";
     }
     return counts;
 }
@@ -151,8 +228,8 @@ BlessCounts bless_all(const Project& project, const std::vector<EngineSpec>& eng
 
 int write_goldens(const std::string& verb, const std::vector<std::string>& args, std::ostream& out,
                   std::ostream& err) {
-    const Arguments a =
-        parse_arguments(args, {"--root", "--engine"}, {"--help", "--prune", "--quiet"});
+    const Arguments a = parse_arguments(args, {"--root", "--engine"},
+                                        {"--help", "--prune", "--quiet", "--partial"});
     if (a.has_flag("--help")) {
         out << (verb == "regen" ? regen_help : bless_help);
         return exit_ok;
@@ -166,15 +243,19 @@ int write_goldens(const std::string& verb, const std::vector<std::string>& args,
     const Project project = find_project(a.option("--root"));
     const std::vector<EngineSpec> engines = engines_chosen(project, a.option("--engine"));
     const std::vector<std::string> paths = scenes_named(project, a.positional);
-    BlessCounts c = bless_all(project, engines, paths, a.has_flag("--quiet"), out, err);
+    Preparation prepared = prepare_all(project, engines, paths, a.has_flag("--quiet"), err);
+    const bool partial = a.has_flag("--partial");
+    BlessCounts c = write_prepared(prepared, partial, out, err);
+    const bool held = !prepared.refusing.empty() && !partial;
     for (const std::string& golden : unreferenced_goldens(project)) {
-        if (a.has_flag("--prune")) {
+        if (a.has_flag("--prune") && !held) {
             std::filesystem::remove(golden);
             ++c.removed;
             out << "  removed    " << printable_path(golden) << "\n";
         } else {
             out << "  unreferenced " << printable_path(golden)
-                << " (no scene of that name; --prune deletes it)\n";
+                << (held ? " (not pruned while a scene refuses)\n"
+                         : " (no scene of that name; --prune deletes it)\n");
         }
     }
     out << "goldens: " << c.created << " new, " << c.changed << " changed, " << c.unchanged

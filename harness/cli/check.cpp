@@ -1,5 +1,6 @@
 // `impulse check [SCENE...]`: the gate.
 #include "cli.h"
+#include "first_divergence.h"
 #include "gate.h"
 #include "input_error.h"
 #include "number_format.h"
@@ -189,6 +190,10 @@ int print_table(std::ostream& out, const std::vector<SceneCheck>& checks) {
                 << printable_path(c.golden_file) << "):\n"
                 << c.details;
         }
+    }
+    // Scenes that start diverging at the same cause, said once for all.
+    for (const std::string& line : shared_causes(checks)) {
+        out << line << "\n";
     }
     out << checks.size() << " scene" << (checks.size() == 1 ? "" : "s") << ": " << passed
         << " passed, " << failed << " failed, " << errors << " error" << (errors == 1 ? "" : "s")

@@ -23,10 +23,11 @@ columns by name, collision events by order and bodies.
 
 By default every double must be bit-identical (-0.0 and +0.0 told apart).
 With --tolerance a value passes when |B - A| <= atol + rtol * |A|, or when the
-two are at most ulp units in the last place apart. Tolerances are per channel:
-position, angle, velocity, angular_velocity, impulse, event_time (event times
-and the frames' t). There are no defaults: every channel A has values for
-needs a tolerance from these options; a field not given is 0.
+two are at most ulp units in the last place apart (ULPs counted at the
+channel's scale, its largest |value| in A: docs/gate-rules.md). Tolerances are
+per channel: position, angle, velocity, angular_velocity, impulse, event_time
+(event times and the frames' t). There are no defaults: every channel A has
+values for needs a tolerance from these options; a field not given is 0.
 
   --tolerance     compare within tolerances instead of exactly
   --atol SPEC     absolute tolerance: one number for every channel (1e-9) or
@@ -34,9 +35,10 @@ needs a tolerance from these options; a field not given is 0.
   --rtol SPEC     relative tolerance, in the same forms
   --ulp SPEC      units in the last place, whole numbers, in the same forms
 
-Prints "identical" or "within tolerance" and exits 0; or prints where the
-trajectories first part, per body and channel, and per channel how many values
-differ and by how much, and exits 1. A different scene_sha256 is noted but is
+Prints "identical" or "within tolerance" and exits 0; or prints the first
+divergence (the earliest value over frames and events) with its cause, where
+the trajectories first part per body and channel, and per channel how many
+values differ and by how much, and exits 1. A different scene_sha256 is noted but is
 no failure by itself. Exits 2 when a file cannot be read or is not a valid
 trajectory, or for a bad option.
 )";

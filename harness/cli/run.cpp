@@ -11,6 +11,7 @@
 #include "output_path.h"
 #include "progress.h"
 #include "project_options.h"
+#include "record.h"
 
 #include <ostream>
 
@@ -42,7 +43,10 @@ impulse/trajectory@1 to FILE (atomically) or to standard output.
 Overrides change the physics and are recorded in the trajectory's solver block.
 The scene's declared expectations are checked: exit 1 when one fails (the
 trajectory is still written), 2 for bad input, an engine that fails, or one
-that refuses the scene as unsupported.
+that refuses the scene as unsupported. A run that stops early (a refused
+resting contact, a Zeno cascade, too many collisions) still writes what it
+simulated, marked "partial" with the reason and the last frame's time, and
+exits 2.
 )";
 } // namespace
 
@@ -86,7 +90,18 @@ int run_verb(const std::vector<std::string>& args, std::ostream& out, std::ostre
     }
     const Trajectory trajectory = [&] {
         const Progress progress("run " + scene.name, progress_wanted(a.has_flag("--quiet")));
-        EngineRun ran = run_engine(engine, scene, overrides);
+        EngineRun ran;
+        try {
+            ran = run_engine(engine, scene, overrides);
+        } catch (const StoppedRun& stopped) {
+            // What was simulated up to the stop, marked partial, so the user
+            // can see (and render) the moment it stopped; still exit 2.
+            const std::string text = write_trajectory(stopped.trajectory());
+            require_readable_size(text, a.option("--out").value_or("standard output"));
+            write_output_file("--out", a.option("--out").value_or(standard_output), text, goldens,
+                              out);
+            throw;
+        }
         if (ran.outcome == EngineRun::Outcome::unsupported) {
             // Nothing to write: the engine does not model what the scene asks.
             throw InputError(scene.file, "", "unsupported by " + engine.name + ": " + ran.message);

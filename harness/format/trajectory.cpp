@@ -199,6 +199,12 @@ std::string write_trajectory(const Trajectory& trajectory) {
     });
     out += ",\n";
     append_multiline_array(out, "events", trajectory.events, event_object);
+    if (trajectory.partial) {
+        // Only a stopped run has the key, so every complete trajectory keeps
+        // its bytes.
+        out += ",\n  \"partial\": {\"reason\": " + quote(trajectory.partial->reason) +
+               ", \"t\": " + format_double(trajectory.partial->t) + "}";
+    }
     out += "\n";
     out += "}\n";
     return out;

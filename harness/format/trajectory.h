@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,6 +24,16 @@ struct TrajectoryEvent {
     double vn_after = 0.0;
 };
 
+// A run that stopped before the scene's duration (a refused resting contact,
+// a Zeno cascade, too many collisions): the sentence that stopped it, and the
+// time of the last frame recorded. Written as "partial": {"reason": ...,
+// "t": ...} after the events (docs/formats.md); a trajectory without it ran
+// to the end. The gate never takes a partial trajectory as a golden.
+struct TrajectoryPartial {
+    std::string reason;
+    double t = 0.0;
+};
+
 // The solver block is kept as ordered (key, JSON text) pairs so that it is
 // written back in the order it was read, whatever simulator produced it.
 struct Trajectory {
@@ -33,6 +44,7 @@ struct Trajectory {
     std::vector<std::string> columns;
     std::vector<std::vector<double>> frames;
     std::vector<TrajectoryEvent> events;
+    std::optional<TrajectoryPartial> partial;
 };
 
 // FNV-1a 64 over the little-endian bytes of every double's bit pattern, frames

@@ -45,6 +45,19 @@ void check_frames(const StreamedDocument& document, std::size_t column_count) {
     }
 }
 
+// "partial": {"reason": SENTENCE, "t": T}, T a finite number.
+TrajectoryPartial read_partial(const Json& value) {
+    require_object(value, "partial");
+    reject_unknown_keys(value, "partial", {"reason", "t"});
+    TrajectoryPartial partial;
+    partial.reason = read_string(require_key(value, "partial", "reason"), "partial.reason");
+    if (partial.reason.empty()) {
+        fail("partial.reason", "must say why the run stopped, got an empty string");
+    }
+    partial.t = read_number(require_key(value, "partial", "t"), "partial.t");
+    return partial;
+}
+
 Trajectory read_validated(StreamedDocument document) {
     const Json& top = document.top;
     if (!top.is_object()) {
@@ -55,7 +68,7 @@ Trajectory read_validated(StreamedDocument document) {
     check_schema(top);
     reject_unknown_keys(top, "",
                         {"schema", "scene", "scene_sha256", "engine", "solver", "digest", "columns",
-                         "frames", "events"});
+                         "frames", "events", "partial"});
 
     Trajectory trajectory;
     trajectory.scene = read_name(require_key(top, "", "scene"), "scene");
@@ -76,6 +89,9 @@ Trajectory read_validated(StreamedDocument document) {
         throw *document.first_bad_event;
     }
     trajectory.events = std::move(document.events);
+    if (top.contains("partial")) {
+        trajectory.partial = read_partial(top["partial"]);
+    }
 
     const std::uint64_t computed = digest_of(trajectory);
     if (computed != hex_to_u64(stored_digest)) {

@@ -200,11 +200,23 @@ void check_events(const Trajectory& gold, const Trajectory& value,
     }
 }
 
+std::string exact_text(double value);
+
 std::vector<std::string> structural_differences(const Trajectory& gold, const Trajectory& value) {
     std::vector<std::string> structural;
     if (gold.scene != value.scene) {
         structural.push_back("the scene names differ: golden '" + gold.scene + "', new '" +
                              value.scene + "'");
+    }
+    // A stopped run is never a golden, and never matches one.
+    for (const auto& [which, trajectory] :
+         {std::pair{"the golden", &gold}, {"the new run", &value}}) {
+        if (trajectory->partial) {
+            structural.push_back(
+                std::string(which) +
+                " is partial: it stopped at t = " + exact_text(trajectory->partial->t) + " s (" +
+                trajectory->partial->reason + "); a partial trajectory is never a golden");
+        }
     }
     check_columns(gold, value, structural);
     if (gold.frames.size() != value.frames.size()) {

@@ -3,7 +3,9 @@
 
 #include "text.h"
 
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <map>
 
 namespace impulse::harness {
@@ -45,8 +47,25 @@ std::string collision_words(std::size_t index) {
     return "collision " + std::to_string(index + 1) + "'s (events[" + std::to_string(index) + "])";
 }
 
+// Two significant digits: a difference is read for its size.
+std::string rough(double value) {
+    if (!std::isfinite(value)) {
+        return sentence_number(value);
+    }
+    char buffer[32];
+    const std::to_chars_result r =
+        std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 2);
+    return std::string(buffer, r.ptr);
+}
+
+// A few ULP say "rounding"; past a million ULP the count means nothing to a
+// reader, and the difference itself does.
 std::string ulp_words(const Divergence& d) {
-    return plural(static_cast<std::size_t>(d.ulp), "ULP", "ULP");
+    constexpr std::uint64_t rounding_scale = 1000000;
+    if (d.ulp <= rounding_scale) {
+        return plural(static_cast<std::size_t>(d.ulp), "ULP", "ULP");
+    }
+    return rough(d.abs_diff) + " (relative " + rough(d.rel_diff) + ")";
 }
 
 std::string event_cause(const Divergence& d, bool the_rest_follows) {

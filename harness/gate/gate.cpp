@@ -169,6 +169,7 @@ SceneCheck check_scene(const Project& project, const EngineSpec& engine,
     SceneCheck check;
     check.scene_file = scene_path;
     check.name = scene_stem(scene_path);
+    check.regen = project.regen;
     if (project.engines.size() > 1) {
         check.engine = engine.name;
     }
@@ -270,17 +271,32 @@ Blessing bless_scene(const GateRoot& root, const std::string& scene_path) {
 
 Blessing bless_scene(const Project& project, const EngineSpec& engine,
                      const std::string& scene_path) {
+    Blessing blessing = prepare_blessing(project, engine, scene_path);
+    write_blessing(blessing);
+    return blessing;
+}
+
+Blessing prepare_blessing(const Project& project, const EngineSpec& engine,
+                          const std::string& scene_path) {
     Blessing blessing;
     blessing.name = scene_stem(scene_path);
     const Scene scene = load_scene_for_golden(project, scene_path);
     blessing.name = scene.name;
     blessing.golden_file = golden_path(project, engine, scene.name);
+    blessing.golden_folder = golden_folder(project, engine);
     const std::optional<Trajectory> ran = run_in(engine, scene, blessing.summary);
     if (!ran) {
         blessing.outcome = Blessing::Outcome::skipped;
         return blessing;
     }
     const Trajectory& trajectory = *ran;
+    if (trajectory.partial) {
+        // An engine of the protocol can hand one back; it is never a golden.
+        throw InputError(scene.file, "",
+                         "the run stopped at t = " + format_double(trajectory.partial->t) + " s (" +
+                             trajectory.partial->reason +
+                             "): a partial trajectory is never a golden");
+    }
     int failed_count = 0;
     const std::string failed =
         failed_expectations(evaluate_expectations(scene, trajectory), failed_count);
@@ -290,11 +306,11 @@ Blessing bless_scene(const Project& project, const EngineSpec& engine,
                            " of the scene's own expectations, so it is not blessed:\n" + failed;
         return blessing;
     }
-    const std::string text = write_trajectory(trajectory);
+    std::string text = write_trajectory(trajectory);
     // Never a golden that check would refuse.
     require_readable_size(text, blessing.golden_file);
 
-    refuse_case_variant_golden(golden_folder(project, engine), scene_path, scene.name);
+    refuse_case_variant_golden(blessing.golden_folder, scene_path, scene.name);
     if (!entry_exists(blessing.golden_file)) {
         blessing.outcome = Blessing::Outcome::created;
     } else {
@@ -322,16 +338,26 @@ Blessing bless_scene(const Project& project, const EngineSpec& engine,
             }
         }
     }
+    blessing.text = std::move(text);
+    return blessing;
+}
+
+void write_blessing(Blessing& blessing) {
+    if (blessing.outcome != Blessing::Outcome::created &&
+        blessing.outcome != Blessing::Outcome::changed) {
+        return;
+    }
     std::error_code error;
-    fs::create_directories(golden_folder(project, engine), error);
+    fs::create_directories(blessing.golden_folder, error);
     try {
-        write_file_atomically(blessing.golden_file, text);
+        write_file_atomically(blessing.golden_file, blessing.text);
     } catch (const InputError& e) {
         // The scene is fine; the folder or the disk is not.
         blessing.outcome = Blessing::Outcome::unwritten;
         blessing.summary = e.what();
     }
-    return blessing;
+    blessing.text.clear();
+    blessing.text.shrink_to_fit();
 }
 
 } // namespace impulse::harness

@@ -90,6 +90,10 @@ struct Blessing {
     std::string golden_file;
     Outcome outcome = Outcome::unchanged;
     std::string summary; // changed: what moved and by how much; refused: why
+    std::string golden_folder;
+    // created / changed, between prepare_blessing and write_blessing: the
+    // golden's new bytes.
+    std::string text;
 };
 
 // Runs the scene in `engine` and writes its golden (atomically, only when the
@@ -99,5 +103,12 @@ struct Blessing {
 Blessing bless_scene(const Project& project, const EngineSpec& engine,
                      const std::string& scene_path);
 Blessing bless_scene(const GateRoot& root, const std::string& scene_path);
+// bless_scene in two halves, so that several scenes are written all or
+// nothing: prepare_blessing runs the scene and decides (the golden's bytes
+// kept in `text`), write_blessing writes a created or changed golden (or
+// makes it unwritten) and does nothing for any other outcome.
+Blessing prepare_blessing(const Project& project, const EngineSpec& engine,
+                          const std::string& scene_path);
+void write_blessing(Blessing& blessing);
 
 } // namespace impulse::harness

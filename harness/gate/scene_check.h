@@ -35,6 +35,9 @@ struct SceneCheck {
     std::optional<Trajectory> gold;
     std::optional<Trajectory> value;
     double seconds = 0.0; // wall time of this scene's check
+    // The project's regen command (impulse.json's "regen"): what accepts
+    // a change, for summary.md.
+    std::string regen;
 };
 
 } // namespace impulse::harness

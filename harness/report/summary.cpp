@@ -3,6 +3,8 @@
 #include "summary.h"
 
 #include "check_outcome.h"
+#include "first_divergence.h"
+#include "text.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -113,56 +115,149 @@ std::string capped(const std::string& text, std::size_t max_lines, std::size_t m
            " more lines; the HTML report has them all)\n";
 }
 
-} // namespace
+// A pull-request comment holds 65,536 characters; the rest is headroom for
+// what a CI step adds around the file.
+constexpr std::size_t summary_budget = 60000;
+// Kept free for the closing line that says what was left out.
+constexpr std::size_t closing_reserve = 400;
 
-std::string summary_markdown(const std::vector<SceneCheck>& checks) {
-    const CheckCounts c = count_checks(checks);
+bool is_problem(const SceneCheck& check) {
+    return check.status == Status::failed || check.status == Status::error;
+}
+
+std::string result_cell(const SceneCheck& check) {
+    switch (check.status) {
+    case Status::passed:
+        return "\u2705 passed";
+    case Status::failed:
+        return "\u274c failed" + (check.stale ? std::string(" (stale golden)") : "");
+    case Status::error:
+        return "\u26a0\ufe0f error";
+    case Status::skipped:
+        return "\u23ed\ufe0f skipped";
+    }
+    return "\u26a0\ufe0f error";
+}
+
+std::string table_row(const SceneCheck& check) {
+    return "| " + markdown_cell(display_name(check), 100) + " | " + result_cell(check) + " | " +
+           markdown_cell(outcome_line(check)) + " | " + seconds_text(check.seconds) + " s |\n";
+}
+
+const char* const table_head = "| scene | result | first divergence or message | time |\n"
+                               "| --- | --- | --- | ---: |\n";
+
+// The command the gate's hints name, from the checks (every check of one
+// project carries the same).
+std::string accept_command(const std::vector<SceneCheck>& checks) {
+    for (const SceneCheck& check : checks) {
+        if (!check.regen.empty()) {
+            return check.regen;
+        }
+    }
+    return "impulse regen";
+}
+
+// Totals, what accepts the change, where the rest is, and causes shared
+// by several scenes: all before any table, so a cut never loses them.
+std::string summary_head(const std::vector<SceneCheck>& checks, const CheckCounts& c) {
     const bool all_passed = c.failed == 0 && c.errors == 0;
     std::string out = "## impulse check\n\n";
     out += std::string("**") + (all_passed ? "\u2705 " : "\u274c ") + verdict_counts(c) + "** (" +
            seconds_text(c.seconds) + " s)\n\n";
+    if (c.failed > 0) {
+        out += "If the change is intended, accept it with `" + accept_command(checks) +
+               "`: it regenerates every golden, or none while a scene refuses.\n\n";
+    }
+    if (!all_passed) {
+        out += "The full report, with every scene's details, is `index.html` beside this "
+               "file.\n\n";
+    }
+    const std::vector<std::string> shared = shared_causes(checks);
+    for (const std::string& line : shared) {
+        out += "- " + markdown_cell(line, 1000) + "\n";
+    }
+    return out + (shared.empty() ? "" : "\n");
+}
+
+// One failing scene's details, folded.
+std::string details_block(const SceneCheck& check) {
+    std::string out = "<details><summary>" + markdown_cell(display_name(check), 100) + ": " +
+                      status_word(check.status) + "</summary>\n\n";
+    if (!check.message.empty()) {
+        out += markdown_cell(check.message, 1000) + "\n\n";
+    }
+    if (!check.details.empty()) {
+        std::string details = printable(capped(check.details, 80, 8000));
+        if (details.back() != '\n') {
+            details += "\n";
+        }
+        const std::string fence = fence_for(details);
+        out += fence + "text\n" + details + fence + "\n\n";
+    }
+    return out + "</details>\n\n";
+}
+
+// The failed scenes' rows stop here, so that the first failures' details
+// fit too.
+constexpr std::size_t table_budget = summary_budget / 2;
+
+// Appends `part` when it keeps `out` within `limit` (with room for the
+// closing line).
+bool append_within(std::string& out, const std::string& part, std::size_t limit = summary_budget) {
+    if (out.size() + part.size() + closing_reserve > limit) {
+        return false;
+    }
+    out += part;
+    return true;
+}
+
+} // namespace
+
+std::string summary_markdown(const std::vector<SceneCheck>& checks) {
+    const CheckCounts c = count_checks(checks);
+    std::string out = summary_head(checks, c);
     if (checks.empty()) {
-        out += "No scenes were checked.\n";
-        return out;
+        return out + "No scenes were checked.\n";
     }
-    out += "| scene | result | first divergence or message | time |\n";
-    out += "| --- | --- | --- | ---: |\n";
-    for (const SceneCheck& check : checks) {
-        std::string result;
-        switch (check.status) {
-        case Status::passed:
-            result = "\u2705 passed";
-            break;
-        case Status::failed:
-            result = "\u274c failed" + (check.stale ? std::string(" (stale golden)") : "");
-            break;
-        case Status::error:
-            result = "\u26a0\ufe0f error";
-            break;
-        case Status::skipped:
-            result = "\u23ed\ufe0f skipped";
-            break;
-        }
-        out += "| " + markdown_cell(display_name(check), 100) + " | " + result + " | " +
-               markdown_cell(outcome_line(check)) + " | " + seconds_text(check.seconds) + " s |\n";
-    }
-    for (const SceneCheck& check : checks) {
-        if (check.status == Status::passed) {
-            continue;
-        }
-        out += "\n### " + markdown_cell(display_name(check), 100) + ": " +
-               status_word(check.status) + "\n\n";
-        if (!check.message.empty()) {
-            out += markdown_cell(check.message, 1000) + "\n\n";
-        }
-        if (!check.details.empty()) {
-            std::string details = printable(capped(check.details, 80, 8000));
-            if (details.back() != '\n') {
-                details += "\n";
+    std::size_t left_out = 0; // rows and blocks that did not fit
+    if (c.failed + c.errors > 0) {
+        out += table_head;
+        for (const SceneCheck& check : checks) {
+            if (is_problem(check) && !append_within(out, table_row(check), table_budget)) {
+                ++left_out;
             }
-            const std::string fence = fence_for(details);
-            out += fence + "text\n" + details + fence + "\n";
         }
+        out += "\n";
+    }
+    // Passed (and skipped) scenes folded, failed ones stay first.
+    std::string rest = table_head;
+    std::size_t others = 0;
+    for (const SceneCheck& check : checks) {
+        if (!is_problem(check)) {
+            rest += table_row(check);
+            ++others;
+        }
+    }
+    if (others > 0) {
+        const std::string folded =
+            "<details><summary>" +
+            plural(others, "scene passed or skipped", "scenes passed or were skipped") +
+            "</summary>\n\n" + rest + "\n</details>\n\n";
+        if (!append_within(out, folded)) {
+            out += plural(others, "scene", "scenes") +
+                   " passed or were skipped; the full report lists them.\n\n";
+        }
+    }
+    for (const SceneCheck& check : checks) {
+        if (is_problem(check) && !append_within(out, details_block(check))) {
+            ++left_out;
+        }
+    }
+    if (left_out > 0) {
+        out += std::to_string(left_out) +
+               " rows and details are left out to fit a pull-request comment; the full report "
+               "has them all.\n";
     }
     return out;
 }

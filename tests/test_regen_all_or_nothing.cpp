@@ -1,0 +1,115 @@
+// Regeneration is all or nothing (docs/gate-rules.md): when any scene
+// refuses to be blessed, `impulse regen` writes no golden, unless --partial,
+// which writes the others and names what it leaves inconsistent.
+#include "support/files.h"
+#include "support/tool.h"
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <map>
+#include <string>
+
+using namespace impulse::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* const scene_names[] = {"drop-box", "drop-circle", "glancing"};
+
+struct ThreeScenes {
+    TempDir temp;
+    fs::path scene(const std::string& name) const {
+        return temp.dir / "harness" / "scenes" / (name + ".json");
+    }
+    fs::path golden(const std::string& name) const {
+        return temp.dir / "goldens" / (name + ".json");
+    }
+    ThreeScenes() {
+        fs::create_directories(temp.dir / "harness" / "scenes");
+        for (const char* name : scene_names) {
+            fs::copy_file(fs::path(IMPULSE_SOURCE_DIR) / "harness" / "scenes" /
+                              (std::string(name) + ".json"),
+                          scene(name));
+        }
+    }
+    std::map<std::string, std::string> goldens() const {
+        std::map<std::string, std::string> bytes;
+        for (const char* name : scene_names) {
+            bytes[name] = slurp(golden(name));
+        }
+        return bytes;
+    }
+    // Every golden would change: each scene's text (so its fingerprint)
+    // changes. drop-box also expects 60 impacts where the physics gives 6,
+    // so it refuses to be blessed.
+    void change_scenes() const {
+        for (const char* name : scene_names) {
+            std::string text = slurp(scene(name));
+            const std::string key = "\"description\": \"";
+            const std::size_t at = text.find(key);
+            REQUIRE(at != std::string::npos);
+            text.insert(at + key.size(), "Changed. ");
+            if (std::string(name) == "drop-box") {
+                const std::string from = "\"impacts\": 6,";
+                REQUIRE(text.find(from) != std::string::npos);
+                text.replace(text.find(from), from.size(), "\"impacts\": 60,");
+            }
+            spit(scene(name), text);
+        }
+    }
+};
+
+} // namespace
+
+TEST_CASE("regen writes no golden when one scene of three refuses", "[regen-all-or-nothing]") {
+    ThreeScenes p;
+    const std::string root = p.temp.dir.string();
+    REQUIRE(run_tool({"regen", "--root", root}).exit_code == 0);
+    const std::map<std::string, std::string> before = p.goldens();
+    p.change_scenes();
+
+    const Outcome o = run_tool({"regen", "--root", root});
+    INFO(o.out << o.err);
+    CHECK(o.exit_code == 1);
+    CHECK(p.goldens() == before); // every byte of every golden
+    CHECK(o.out.find("REFUSED    drop-box") != std::string::npos);
+    CHECK(o.out.find("held back  drop-circle: would be changed") != std::string::npos);
+    CHECK(o.out.find("held back  glancing: would be changed") != std::string::npos);
+    CHECK(o.out.find("no golden was written: drop-box refuses to be blessed") != std::string::npos);
+
+    SECTION("bless is the same verb") {
+        const Outcome b = run_tool({"bless", "--root", root});
+        CHECK(b.exit_code == 1);
+        CHECK(p.goldens() == before);
+    }
+    SECTION("--partial writes the two others and names the third") {
+        const Outcome partial = run_tool({"regen", "--root", root, "--partial"});
+        INFO(partial.out << partial.err);
+        CHECK(partial.exit_code == 1);
+        const std::map<std::string, std::string> after = p.goldens();
+        CHECK(after.at("drop-box") == before.at("drop-box"));
+        CHECK(after.at("drop-circle") != before.at("drop-circle"));
+        CHECK(after.at("glancing") != before.at("glancing"));
+        CHECK(partial.out.find("--partial: 2 goldens were written, but drop-box was not "
+                               "regenerated and still holds the old motion") != std::string::npos);
+        // The two written goldens are the changed scenes' own: check passes them.
+        const Outcome check = run_tool({"check", "--root", root, "drop-circle", "glancing"});
+        CHECK(check.exit_code == 0);
+    }
+}
+
+TEST_CASE("regen writes no golden when one scene of three cannot be loaded",
+          "[regen-all-or-nothing]") {
+    ThreeScenes p;
+    const std::string root = p.temp.dir.string();
+    REQUIRE(run_tool({"regen", "--root", root}).exit_code == 0);
+    const std::map<std::string, std::string> before = p.goldens();
+    p.change_scenes();
+    spit(p.scene("drop-box"), "{\"schema\": \"impulse/scene@1\",");
+
+    const Outcome o = run_tool({"regen", "--root", root});
+    INFO(o.out << o.err);
+    CHECK(o.exit_code == 2);
+    CHECK(p.goldens() == before);
+    CHECK(o.out.find("no golden was written: drop-box refuses") != std::string::npos);
+}
