@@ -2,6 +2,7 @@
 #include "comparison_picture.h"
 
 #include "error_plot.h"
+#include "first_divergence.h"
 #include "legend.h"
 #include "svg.h"
 #include "tracks.h"
@@ -268,24 +269,14 @@ double draw_error_section(std::string& body, double y, double legend_x, const Ru
 
 } // namespace
 
-const Divergence* first_divergence(const Comparison& comparison) {
-    const Divergence* best = nullptr;
-    auto is_event = [](const Divergence& d) { return is_event_column(d.column); };
-    for (const Divergence& d : comparison.first_divergences) {
-        if (best == nullptr || d.t < best->t ||
-            (d.t == best->t && is_event(*best) && !is_event(d))) {
-            best = &d;
-        }
-    }
-    return best;
-}
-
 std::string render_comparison_svg(const Scene* scene, const Trajectory& gold,
                                   const Trajectory& value, const Comparison& comparison) {
     const Runs runs(scene, gold, value);
     View view = comparison_view(runs);
     const double width = pad + axis_left + view.width() + legend_gap + legend_width + pad;
-    const Divergence* first = first_divergence(comparison);
+    // The one first divergence of the gate (first_divergence.h), so the picture
+    // marks what the terminal, JUnit, summary.md and the page name.
+    const Divergence* first = earliest_divergence(comparison);
 
     std::string body;
     const std::string name = scene != nullptr ? scene->name : gold.scene;

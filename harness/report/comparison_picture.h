@@ -15,8 +15,4 @@ namespace impulse::harness {
 std::string render_comparison_svg(const Scene* scene, const Trajectory& gold,
                                   const Trajectory& value, const Comparison& comparison);
 
-// The earliest of comparison.first_divergences by golden time (a frame value
-// before an event at the same time, then column order); nullptr when none.
-const Divergence* first_divergence(const Comparison& comparison);
-
 } // namespace impulse::harness
