@@ -332,6 +332,22 @@ constexpr std::array<EventField, 8> event_fields = {{
     {"vn_after", Channel::velocity},
 }};
 
+// The largest |x| or |y| of any body's position over the golden's frames.
+double position_scale(const Trajectory& gold) {
+    double scale = 0.0;
+    for (std::size_t c = 0; c < gold.columns.size(); ++c) {
+        if (column_channel(gold.columns[c]) != Channel::position) {
+            continue;
+        }
+        for (const std::vector<double>& frame : gold.frames) {
+            if (c < frame.size()) {
+                widen_scale(scale, frame[c]);
+            }
+        }
+    }
+    return scale;
+}
+
 std::array<double, 8> event_values(const TrajectoryEvent& e) {
     return {e.t,         e.point[0], e.point[1],  e.normal[0],
             e.normal[1], e.impulse,  e.vn_before, e.vn_after};
@@ -341,6 +357,12 @@ void compare_events(const Trajectory& gold, const Trajectory& value,
                     const std::optional<Tolerances>& tolerances, Comparison& result) {
     const std::size_t common = std::min(gold.events.size(), value.events.size());
     std::array<double, event_fields.size()> scales{};
+    // A contact point is a position in the scene: measured at the scale of the
+    // bodies' positions too, so a point on a floor at y = 0 (its y 1e-12 or
+    // so, rounding) does not count its rounding in ULPs of 1e-12.
+    const double positions = position_scale(gold);
+    scales[1] = positions;
+    scales[2] = positions;
     for (const TrajectoryEvent& e : gold.events) {
         const std::array<double, 8> values = event_values(e);
         for (std::size_t f = 0; f < scales.size(); ++f) {
