@@ -22,41 +22,6 @@ std::size_t at(int i) {
     return static_cast<std::size_t>(i);
 }
 
-// The body's slot in dv: 0 for every static body (zero inverse mass and
-// inertia, so its velocity change stays exactly 0), else its own from 1 on.
-int slot_of(const World& world, int body, MprgpScratch& s) {
-    if (world.bodies[at(body)].is_static()) {
-        return 0;
-    }
-    int& slot = s.local_of_body[at(body)];
-    if (slot < 0) {
-        s.bodies.push_back(body);
-        slot = static_cast<int>(s.bodies.size()); // slot 0 is the static bodies'
-    }
-    return slot;
-}
-
-// The same row solve_pgs builds: +lambda n on A and -lambda n on B.
-PgsRow row_of(const World& world, const ContactPoint& p, MprgpScratch& s) {
-    const Body& a = world.bodies[at(p.a)];
-    const Body& b = world.bodies[at(p.b)];
-    const Vec2 n = p.contact.normal;
-    PgsRow r;
-    r.slot_a = slot_of(world, p.a, s);
-    r.slot_b = slot_of(world, p.b, s);
-    r.nx = n.x;
-    r.ny = n.y;
-    r.rn_a = p.rn_a;
-    r.rn_b = p.rn_b;
-    r.ka_x = a.inv_mass * n.x;
-    r.ka_y = a.inv_mass * n.y;
-    r.ra = a.inv_inertia * p.rn_a;
-    r.kb_x = -(b.inv_mass * n.x);
-    r.kb_y = -(b.inv_mass * n.y);
-    r.rb = -(b.inv_inertia * p.rn_b);
-    return r;
-}
-
 // y = A x = J (M^-1 J^T x): x scattered into the bodies' dv, then each
 // point's relative normal velocity read back. O(points), A never formed.
 void multiply(const std::vector<double>& x, std::vector<double>& y, MprgpScratch& s) {
@@ -133,7 +98,7 @@ double prepare(const World& world, const std::vector<ContactPoint>& points,
     s.rows.resize(n);
     s.diagonal.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-        s.rows[i] = row_of(world, points[i], s);
+        s.rows[i] = row_of(world, points[i], s.local_of_body, s.bodies);
         s.diagonal[i] = delassus(world, points[i], points[i]); // A_ii, as solve_lcp sees it
     }
     const std::size_t slots = s.bodies.size() + 1;

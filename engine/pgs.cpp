@@ -11,41 +11,6 @@ std::size_t at(int i) {
     return static_cast<std::size_t>(i);
 }
 
-// The body's slot in dv: 0 for every static body (zero inverse mass and
-// inertia, so its velocity change stays exactly 0), else its own from 1 on.
-int slot_of(const World& world, int body, PgsScratch& s) {
-    if (world.bodies[at(body)].is_static()) {
-        return 0;
-    }
-    int& slot = s.local_of_body[at(body)];
-    if (slot < 0) {
-        s.bodies.push_back(body);
-        slot = static_cast<int>(s.bodies.size()); // slot 0 is the static bodies'
-    }
-    return slot;
-}
-
-PgsRow row_of(const World& world, const ContactPoint& p, PgsScratch& s) {
-    const Body& a = world.bodies[at(p.a)];
-    const Body& b = world.bodies[at(p.b)];
-    const Vec2 n = p.contact.normal;
-    PgsRow r;
-    r.slot_a = slot_of(world, p.a, s);
-    r.slot_b = slot_of(world, p.b, s);
-    r.nx = n.x;
-    r.ny = n.y;
-    r.rn_a = p.rn_a;
-    r.rn_b = p.rn_b;
-    // +lambda n on A and -lambda n on B (restitution.h, apply_impulse).
-    r.ka_x = a.inv_mass * n.x;
-    r.ka_y = a.inv_mass * n.y;
-    r.ra = a.inv_inertia * p.rn_a;
-    r.kb_x = -(b.inv_mass * n.x);
-    r.kb_y = -(b.inv_mass * n.y);
-    r.rb = -(b.inv_inertia * p.rn_b);
-    return r;
-}
-
 // w_i = J_i dv + q_i.
 double velocity_of(const PgsRow& r, double q, const PgsScratch& s) {
     const std::size_t a = at(r.slot_a);
@@ -83,7 +48,7 @@ void prepare(const World& world, const std::vector<ContactPoint>& points,
     s.rows.resize(points.size());
     s.diagonal.resize(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
-        s.rows[i] = row_of(world, points[i], s);
+        s.rows[i] = row_of(world, points[i], s.local_of_body, s.bodies);
         s.diagonal[i] = delassus(world, points[i], points[i]); // A_ii, as solve_lcp sees it
     }
     const std::size_t slots = s.bodies.size() + 1;

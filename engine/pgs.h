@@ -8,7 +8,7 @@
 // previous step's lambda leaves a settled pile one or two sweeps from done.
 #pragma once
 
-#include "contact_problem.h"
+#include "contact_rows.h"
 
 #include <vector>
 
@@ -25,16 +25,6 @@ struct PgsResult {
     bool converged = false;
     int sweeps = 0;
     double residual = 0.0; // the largest residual after the last sweep
-};
-
-// One point's row of J and its column of M^-1 J^T, with the bodies' slots in
-// dv. Slot 0 stands for every static body: its k and r are zero, so it stays 0.
-struct PgsRow {
-    int slot_a = 0;
-    int slot_b = 0;
-    double nx = 0.0, ny = 0.0, rn_a = 0.0, rn_b = 0.0; // J_i = (n, rn_a | -n, -rn_b)
-    double ka_x = 0.0, ka_y = 0.0, ra = 0.0;           // A's velocity change per unit lambda_i
-    double kb_x = 0.0, kb_y = 0.0, rb = 0.0;           // B's, with its minus sign
 };
 
 // Scratch kept between calls: per-body entries sized to the world once, reset
