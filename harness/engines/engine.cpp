@@ -35,18 +35,18 @@ constexpr int unsupported_exit_code = 3;
 // An engine's message is its last non-empty line on standard error, cut to this.
 constexpr std::size_t message_chars = 300;
 
-EngineRun run_box2d(const Scene& scene, const Overrides& overrides) {
-#ifdef IMPULSE_WITH_BOX2D
+// An in-process reference engine's run: `make` builds its simulator from the
+// effective scene and throws InputError for a scene the engine cannot
+// represent, which the protocol calls unsupported (a skip with the sentence
+// naming the JSON path, as an external engine's exit 3).
+template <class Make>
+[[maybe_unused]] EngineRun run_in_process(const Scene& scene, const Overrides& overrides,
+                                          Make&& make) {
     const Scene effective = with_overrides(scene, overrides);
     EngineRun result;
     std::unique_ptr<Simulator> simulator;
     try {
-        // A scene Box2D cannot represent (single precision, a polygon its skin
-        // would swallow) is what the protocol calls unsupported: a skip with
-        // the sentence naming the JSON path, as an external engine's exit 3.
-        require_single_precision(effective, "Box2D",
-                                 effective.dt / static_cast<double>(effective.box2d.substeps));
-        simulator = make_box2d_simulator(effective, result.warnings);
+        simulator = make(effective, result);
     } catch (const InputError& refusal) {
         result.outcome = EngineRun::Outcome::unsupported;
         result.message = refusal.what();
@@ -58,6 +58,17 @@ EngineRun run_box2d(const Scene& scene, const Overrides& overrides) {
         result.trajectory.solver.emplace_back("overrides", used);
     }
     return result;
+}
+
+EngineRun run_box2d(const Scene& scene, const Overrides& overrides) {
+#ifdef IMPULSE_WITH_BOX2D
+    return run_in_process(scene, overrides, [](const Scene& effective, EngineRun& result) {
+        // Single precision and a polygon its skin would swallow are what Box2D
+        // cannot represent.
+        require_single_precision(effective, "Box2D",
+                                 effective.dt / static_cast<double>(effective.box2d.substeps));
+        return make_box2d_simulator(effective, result.warnings);
+    });
 #else
     (void)overrides;
     throw InputError(scene.file, "",
@@ -69,25 +80,11 @@ EngineRun run_box2d(const Scene& scene, const Overrides& overrides) {
 
 EngineRun run_chipmunk(const Scene& scene, const Overrides& overrides) {
 #ifdef IMPULSE_WITH_CHIPMUNK
-    const Scene effective = with_overrides(scene, overrides);
-    EngineRun result;
-    std::unique_ptr<Simulator> simulator;
-    try {
-        // A scene Chipmunk cannot represent, or one that would trip its debug
-        // checks (which abort the process), is refused before Chipmunk sees
-        // it: a skip with the sentence naming the JSON path, as Box2D's.
-        simulator = make_chipmunk_simulator(effective);
-    } catch (const InputError& refusal) {
-        result.outcome = EngineRun::Outcome::unsupported;
-        result.message = refusal.what();
-        return result;
-    }
-    result.trajectory = record(*simulator, effective);
-    const std::string used = overrides_list(overrides);
-    if (!used.empty()) {
-        result.trajectory.solver.emplace_back("overrides", used);
-    }
-    return result;
+    return run_in_process(scene, overrides, [](const Scene& effective, EngineRun&) {
+        // Refused before Chipmunk sees it: what it cannot represent, and what
+        // would trip its debug checks (which abort the process).
+        return make_chipmunk_simulator(effective);
+    });
 #else
     (void)overrides;
     throw InputError(scene.file, "",
