@@ -257,16 +257,9 @@ class ContactRecorder final : public b2ContactListener {
         p.normal = a_first ? -normal : normal;
         p.event = events_.size();
 
-        TrajectoryEvent event;
-        event.t = t_end_;
-        event.a = scene_.bodies[index_of(p.a)].name;
-        event.b = scene_.bodies[index_of(p.b)].name;
-        event.point[0] = p.point.x;
-        event.point[1] = p.point.y;
-        event.normal[0] = p.normal.x;
-        event.normal[1] = p.normal.y;
-        event.vn_before = relative_normal_velocity(p);
-        events_.push_back(event);
+        events_.push_back(contact_event(t_end_, scene_.bodies[index_of(p.a)].name,
+                                        scene_.bodies[index_of(p.b)].name, p.point, p.normal,
+                                        relative_normal_velocity(p)));
         pending_.push_back(p);
     }
 

@@ -33,6 +33,23 @@ class Simulator {
     virtual WorkCounters work() const { return {}; }
 };
 
+// A reference engine's contact event as the trajectory records it, before its
+// impulse and vn_after are known (the engine's solve fills them in): the
+// scene's names for bodies a and b, the contact point, the normal toward a.
+inline TrajectoryEvent contact_event(double t, const std::string& a, const std::string& b,
+                                     Vec2 point, Vec2 normal, double vn_before) {
+    TrajectoryEvent event;
+    event.t = t;
+    event.a = a;
+    event.b = b;
+    event.point[0] = point.x;
+    event.point[1] = point.y;
+    event.normal[0] = normal.x;
+    event.normal[1] = normal.y;
+    event.vn_before = vn_before;
+    return event;
+}
+
 std::unique_ptr<Simulator> make_impulse_simulator(const Scene& scene);
 
 } // namespace impulse::harness
