@@ -79,4 +79,17 @@ inline std::vector<CollisionEvent> run_steps(World& world, double dt, long long 
     return events;
 }
 
+// Dense contact by time-stepping from t = 0 (docs/engine.md, "Dense contact"),
+// with the secant search its event steps would use.
+inline SolverSettings time_stepping(Integrator integrator = Integrator::verlet,
+                                    Stepping stepping = Stepping::world) {
+    SolverSettings solver;
+    solver.integrator = integrator;
+    solver.toi = TimeOfImpactMethod::secant;
+    solver.stepping = stepping;
+    solver.resting = true;
+    solver.resting_method = RestingMethod::time_stepping;
+    return solver;
+}
+
 } // namespace impulse::test

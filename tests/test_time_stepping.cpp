@@ -14,22 +14,12 @@
 using namespace impulse;
 using impulse::test::dynamic_body;
 using impulse::test::static_body;
+using impulse::test::time_stepping;
 
 namespace {
 
 constexpr double g = 9.81;
 constexpr double h = 1.0 / 60.0;
-
-SolverSettings time_stepping(Integrator integrator = Integrator::verlet,
-                             Stepping stepping = Stepping::world) {
-    SolverSettings solver;
-    solver.integrator = integrator;
-    solver.toi = TimeOfImpactMethod::secant;
-    solver.stepping = stepping;
-    solver.resting = true;
-    solver.resting_method = RestingMethod::time_stepping;
-    return solver;
-}
 
 struct Energy {
     double total = 0.0;
