@@ -12,6 +12,7 @@
 #include "simulator.h"
 #include "stress.h"
 #include "support.h"
+#include "support/stress_rows.h"
 
 #include <catch2/catch.hpp>
 #include <cfloat>
@@ -28,6 +29,9 @@
 
 using namespace impulse;
 using namespace impulse::harness;
+using impulse::test::passes;
+using impulse::test::row_of;
+using impulse::test::states_of;
 
 namespace {
 
@@ -53,29 +57,6 @@ Scene drop() {
         R"("restitution": 0.5, "solver": {"integrator": "verlet"})",
         R"({"name": "ground", "static": true, "shape": {"box": [5, 0.5]}, "position": [0, -0.5]},
                          {"name": "ball", "shape": {"circle": 0.5}, "mass": 1, "position": [0, 1.5]})");
-}
-
-std::vector<BodyState> states_of(const Scene& scene) {
-    std::vector<BodyState> states;
-    for (const SceneBody& body : scene.bodies) {
-        states.push_back({body.position, body.angle, body.velocity, body.angular_velocity});
-    }
-    return states;
-}
-
-// The row whose invariant starts with `name`; fails the test when there is none.
-StressRow row_of(const std::vector<StressRow>& rows, const std::string& name) {
-    for (const StressRow& row : rows) {
-        if (row.invariant.rfind(name, 0) == 0) {
-            return row;
-        }
-    }
-    FAIL("no row '" << name << "'");
-    return {};
-}
-
-bool passes(const StressMonitor& monitor, const std::string& name) {
-    return row_of(monitor.rows(), name).passed;
 }
 
 TrajectoryEvent event_between(const std::string& a, const std::string& b, double t,

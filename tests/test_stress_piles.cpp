@@ -4,6 +4,7 @@
 // each fed a made-up violation, what each pile row asks of the engine, and,
 // hidden while the engine misses them, the real rows.
 #include "stress.h"
+#include "support/stress_rows.h"
 
 #include <catch2/catch.hpp>
 #include <string>
@@ -11,31 +12,11 @@
 
 using namespace impulse;
 using namespace impulse::harness;
+using impulse::test::passes;
+using impulse::test::row_of;
+using impulse::test::states_of;
 
 namespace {
-
-std::vector<BodyState> states_of(const Scene& scene) {
-    std::vector<BodyState> states;
-    for (const SceneBody& body : scene.bodies) {
-        states.push_back({body.position, body.angle, body.velocity, body.angular_velocity});
-    }
-    return states;
-}
-
-// The row whose invariant starts with `name`; fails the test when there is none.
-StressRow row_of(const std::vector<StressRow>& rows, const std::string& name) {
-    for (const StressRow& row : rows) {
-        if (row.invariant.rfind(name, 0) == 0) {
-            return row;
-        }
-    }
-    FAIL("no row '" << name << "'");
-    return {};
-}
-
-bool passes(const StressMonitor& monitor, const std::string& name) {
-    return row_of(monitor.rows(), name).passed;
-}
 
 // A column of two 1 x 0.5 m boxes, 1 kg under 3 kg, at rest on static ground.
 Scene column_of_two() {
