@@ -5,6 +5,7 @@
 #include "atomic_file.h"
 #include "box2d_simulator.h"
 #include "cli.h"
+#include "engine_comparison.h"
 #include "engine_option.h"
 #include "gate.h"
 #include "input_error.h"
@@ -222,29 +223,27 @@ void write_text(std::ostream& out, const std::vector<ReferenceComparison>& compa
     for (const ReferenceComparison& c : comparisons) {
         width = std::max(width, c.name.size());
     }
-    int passed = 0;
-    int skipped = 0;
+    std::size_t passed = 0, failed = 0, skipped = 0, none = 0;
     for (const ReferenceComparison& c : comparisons) {
         const std::string pad(width - c.name.size(), ' ');
         if (!c.skipped.empty()) {
             ++skipped;
             out << "  skipped " << c.name << pad << "  " << c.skipped << "\n";
-            continue;
-        }
-        passed += c.passed() ? 1 : 0;
-        out << "  " << (c.passed() ? "ok      " : "FAILED  ") << c.name << pad << "  ";
-        if (c.rows.empty()) {
-            out << "no observables declared\n";
+        } else if (c.rows.empty()) {
+            // Nothing compared: neither a pass nor a failure.
+            ++none;
+            out << "  none    " << c.name << pad << "  no observables declared, nothing compared\n";
         } else if (c.passed()) {
-            out << "all " << c.rows.size() << " rows within tolerance\n";
+            ++passed;
+            out << "  ok      " << c.name << pad << "  all " << c.rows.size()
+                << " rows within tolerance\n";
         } else {
-            out << c.outside() << " of " << c.rows.size() << " rows outside tolerance\n";
+            ++failed;
+            out << "  FAILED  " << c.name << pad << "  " << c.outside() << " of " << c.rows.size()
+                << " rows outside tolerance\n";
         }
     }
-    const std::size_t failed = comparisons.size() - static_cast<std::size_t>(passed + skipped);
-    out << comparisons.size() << " scene" << (comparisons.size() == 1 ? "" : "s") << ": " << passed
-        << " passed, " << failed << " failed"
-        << (skipped > 0 ? ", " + std::to_string(skipped) + " skipped" : "") << "\n\n";
+    out << scene_totals(comparisons.size(), passed, failed, skipped, none) << "\n\n";
     if (options.engine.kind == EngineSpec::Kind::impulse) {
         out << legend;
     } else {
@@ -272,11 +271,17 @@ std::string write_json(const std::vector<ReferenceComparison>& comparisons,
         nlohmann::ordered_json scene;
         scene["name"] = c.name;
         scene["file"] = c.file;
-        scene["passed"] = c.skipped.empty() ? nlohmann::ordered_json(c.passed()) : nullptr;
+        const bool none = c.skipped.empty() && c.rows.empty();
+        scene["status"] = !c.skipped.empty() ? "skipped"
+                          : none             ? "no observables"
+                          : c.passed()       ? "passed"
+                                             : "failed";
+        // Neither a pass nor a failure: nothing ran, or nothing was compared.
+        scene["passed"] = c.skipped.empty() && !none ? nlohmann::ordered_json(c.passed()) : nullptr;
         if (!c.skipped.empty()) {
             scene["skipped"] = c.skipped;
-        } else if (c.rows.empty()) {
-            scene["note"] = "no observables declared";
+        } else if (none) {
+            scene["note"] = no_observables_sentence;
         } else {
             scene["dt"] = c.dt;
             if (!own) {

@@ -2,6 +2,8 @@
 // which column is judged, whether a scene passed, an engine's worst error.
 #include "engine_comparison.h"
 
+#include "text.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -29,6 +31,39 @@ std::size_t rows_outside(const EngineComparison& c) {
 bool comparison_passed(const ComparisonReport& report) {
     return std::all_of(report.scenes.begin(), report.scenes.end(),
                        [](const EngineComparison& c) { return rows_outside(c) == 0; });
+}
+
+SceneStatus scene_status(const EngineComparison& c) {
+    if (c.nothing_declared()) {
+        return SceneStatus::no_observables;
+    }
+    if (c.skipped()) {
+        return SceneStatus::skipped;
+    }
+    return rows_outside(c) > 0 ? SceneStatus::failed : SceneStatus::passed;
+}
+
+const char* status_name(SceneStatus status) {
+    switch (status) {
+    case SceneStatus::passed:
+        return "passed";
+    case SceneStatus::failed:
+        return "failed";
+    case SceneStatus::skipped:
+        return "skipped";
+    case SceneStatus::no_observables:
+        return "no observables";
+    }
+    return "";
+}
+
+std::string scene_totals(std::size_t scenes, std::size_t passed, std::size_t failed,
+                         std::size_t skipped, std::size_t no_observables) {
+    return plural(scenes, "scene", "scenes") + ": " + std::to_string(passed) + " passed, " +
+           std::to_string(failed) + " failed" +
+           (skipped > 0 ? ", " + std::to_string(skipped) + " skipped" : "") +
+           (no_observables > 0 ? ", " + std::to_string(no_observables) + " with no observables"
+                               : "");
 }
 
 std::optional<WorstError> worst_error(const std::vector<EngineComparison>& scenes,

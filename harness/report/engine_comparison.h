@@ -35,8 +35,24 @@ std::optional<std::size_t> judged_column(const EngineComparison& c);
 // Rows of the judged reference outside the scene's tolerance of the engine
 // under study (0 when it did not run).
 std::size_t rows_outside(const EngineComparison& c);
-// Every scene within tolerance (skipped scenes and unjudged ones pass).
+// Every scene within tolerance (skipped scenes, unjudged ones and those
+// with no observables do not fail).
 bool comparison_passed(const ComparisonReport& report);
+
+// A scene's row in the summary, the JSON and JUnit. A scene that declares no
+// observables had nothing compared: neither a pass nor a failure, and told
+// apart from both so a table of "ok" rows means something was checked.
+enum class SceneStatus { passed, failed, skipped, no_observables };
+SceneStatus scene_status(const EngineComparison& c);
+// "passed", "failed", "skipped", "no observables" (the JSON's "status").
+const char* status_name(SceneStatus status);
+// "2 scenes: 0 passed, 0 failed, 2 with no observables": skipped and no
+// observables only when there are some (impulse compare and impulse box2d).
+std::string scene_totals(std::size_t scenes, std::size_t passed, std::size_t failed,
+                         std::size_t skipped, std::size_t no_observables);
+// The sentence a scene with no observables is reported with.
+inline constexpr const char* no_observables_sentence =
+    "no observables declared: the scene has no box2d.observables, so nothing was compared";
 
 // Per scene: each engine's settings line, then the table (exact, then each
 // engine's value and its error against the exact answer); at the end one

@@ -70,9 +70,14 @@ Json scene_json(const EngineComparison& c) {
     Json j;
     j["name"] = c.name;
     j["file"] = c.file;
-    j["passed"] = c.skipped() ? Json(nullptr) : Json(rows_outside(c) == 0);
-    if (c.nothing_declared()) {
-        j["note"] = "no observables declared";
+    const SceneStatus status = scene_status(c);
+    j["status"] = status_name(status);
+    // Neither a pass nor a failure: nothing was compared, or nothing ran.
+    j["passed"] = status == SceneStatus::passed   ? Json(true)
+                  : status == SceneStatus::failed ? Json(false)
+                                                  : Json(nullptr);
+    if (status == SceneStatus::no_observables) {
+        j["note"] = no_observables_sentence;
     }
     if (c.skipped()) {
         j["skipped"] = c.engines.front().unsupported;

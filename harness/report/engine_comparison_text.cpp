@@ -188,36 +188,43 @@ void write_summary(std::string& out, const ComparisonReport& report, bool summar
     for (const EngineComparison& c : report.scenes) {
         name_width = std::max(name_width, c.name.size());
     }
-    std::size_t passed = 0, failed = 0, skipped = 0;
+    std::size_t counts[4] = {0, 0, 0, 0}; // by SceneStatus
     std::string lines;
     for (const EngineComparison& c : report.scenes) {
-        const std::size_t outside = rows_outside(c);
-        std::string status = "ok      ";
+        const SceneStatus status = scene_status(c);
+        ++counts[static_cast<int>(status)];
+        std::string label = "ok      ";
         std::string what;
-        if (c.skipped()) {
-            ++skipped;
-            status = "skipped ";
+        switch (status) {
+        case SceneStatus::skipped:
+            label = "skipped ";
             what = c.engines.front().unsupported;
-        } else if (outside > 0) {
-            ++failed;
-            status = "FAILED  ";
-            what = std::to_string(outside) + " of " + std::to_string(c.rows.size()) + " " +
+            break;
+        case SceneStatus::failed:
+            label = "FAILED  ";
+            what = std::to_string(rows_outside(c)) + " of " + std::to_string(c.rows.size()) + " " +
                    judged_reference + " rows outside tolerance";
-        } else {
-            ++passed;
-            what = c.nothing_declared() ? "no observables declared"
-                   : judged_column(c)
+            break;
+        case SceneStatus::no_observables:
+            label = "none    ";
+            what = "no observables declared, nothing compared";
+            break;
+        case SceneStatus::passed:
+            what = judged_column(c)
                        ? std::string("all ") + judged_reference + " rows within tolerance"
                        : "compared (no " + std::string(judged_reference) + " column to judge)";
+            break;
         }
-        if (!summary_only || status != "ok      ") {
-            lines += "  " + status + padded(c.name, name_width) + "  " + what + "\n";
+        // The summary (scripts/gate) shows what needs a look; the totals
+        // count the rest.
+        const bool quiet_row =
+            status == SceneStatus::passed || status == SceneStatus::no_observables;
+        if (!summary_only || !quiet_row) {
+            lines += "  " + label + padded(c.name, name_width) + "  " + what + "\n";
         }
     }
     out += (lines.empty() ? "" : "\n" + lines);
-    out += plural(report.scenes.size(), "scene", "scenes") + ": " + std::to_string(passed) +
-           " passed, " + std::to_string(failed) + " failed" +
-           (skipped > 0 ? ", " + std::to_string(skipped) + " skipped" : "") + "\n";
+    out += scene_totals(report.scenes.size(), counts[0], counts[1], counts[2], counts[3]) + "\n";
 }
 
 } // namespace
