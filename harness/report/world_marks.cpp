@@ -42,6 +42,10 @@ void draw_outline(std::string& out, const View& view, const Track& track, const 
     const std::string common = attr("data-body", esc(track.name)) +
                                attr("data-frame", std::to_string(frame)) +
                                attr("data-t", readable(t, 6));
+    const std::string tip =
+        "<title>" +
+        esc(track.name + " at t = " + readable(t, 6) + " s (frame " + std::to_string(frame) + ")") +
+        "</title>";
     const std::string paint = " stroke=\"" + std::string(track.colour) + "\"" +
                               attr("stroke-opacity", f2(stroke_opacity)) + " fill=\"" +
                               track.colour + "\"" + attr("fill-opacity", f2(fill_opacity)) + style;
@@ -49,7 +53,7 @@ void draw_outline(std::string& out, const View& view, const Track& track, const 
         const double r = 5.0;
         const Vec2 u = rotate(q, Vec2{1.0, 0.0});
         const double cx = view.sx(pose.p.x), cy = view.sy(pose.p.y);
-        out += "<g class=\"outline\"" + common + paint + ">";
+        out += "<g class=\"outline\"" + common + paint + ">" + tip;
         out += "<circle" + attr("cx", f2(cx)) + attr("cy", f2(cy)) + attr("r", f2(r)) + "/>";
         out += "<path" +
                attr("d", "M" + f2(cx) + " " + f2(cy) + "L" + f2(cx + 2.0 * r * u.x) + " " +
@@ -60,7 +64,7 @@ void draw_outline(std::string& out, const View& view, const Track& track, const 
     const Shape& shape = track.body->shape;
     if (shape.type == ShapeType::circle) {
         const Vec2 edge = pose.p + rotate(q, Vec2{shape.radius, 0.0});
-        out += "<g class=\"outline\"" + common + paint + ">";
+        out += "<g class=\"outline\"" + common + paint + ">" + tip;
         out += "<circle" + attr("cx", f2(view.sx(pose.p.x))) + attr("cy", f2(view.sy(pose.p.y))) +
                attr("r", f2(shape.radius * view.scale)) + "/>";
         out += "<path" +
@@ -71,7 +75,7 @@ void draw_outline(std::string& out, const View& view, const Track& track, const 
     }
     out += "<polygon class=\"outline\"" + common +
            attr("points", polygon_points(view, world_outline(shape, pose.p, pose.angle))) + paint +
-           "/>\n";
+           ">" + tip + "</polygon>\n";
 }
 
 std::string arrow_d(double fx, double fy, Vec2 d, double length) {
@@ -88,6 +92,12 @@ std::string arrow_d(double fx, double fy, Vec2 d, double length) {
            f2(by - half * ux) + "Z";
 }
 
+void draw_time_label(std::string& out, double x, double y, double t) {
+    text_at(out, x, y, "t = " + readable(t) + " s", small_size, muted,
+            " class=\"time\" stroke=\"#ffffff\" stroke-width=\"3\" paint-order=\"stroke\" "
+            "stroke-linejoin=\"round\"");
+}
+
 void draw_events(std::string& out, const View& view, const std::vector<TrajectoryEvent>& events,
                  bool hollow, const char* extra_class) {
     out += "<g class=\"events\">\n";
@@ -97,11 +107,16 @@ void draw_events(std::string& out, const View& view, const std::vector<Trajector
         const std::string data = attr("data-event", std::to_string(i)) +
                                  attr("data-t", readable(e.t, 6)) +
                                  attr("data-bodies", esc(e.a + "/" + e.b));
+        const std::string tip = "<title>" +
+                                esc("t = " + readable(e.t, 6) + " s: " + e.a + " and " + e.b +
+                                    ", impulse " + readable(e.impulse)) +
+                                "</title>";
         const std::string d = arrow_d(x, y, Vec2{e.normal[0], e.normal[1]}, 30.0);
         if (!d.empty()) {
             out += std::string("<path class=\"normal") + extra_class + "\"" + data + attr("d", d) +
                    " stroke=\"" + event_colour + "\" stroke-width=\"1.4\" fill=\"" + event_colour +
-                   "\" stroke-linejoin=\"round\"" + (hollow ? " opacity=\"0.45\"" : "") + "/>\n";
+                   "\" stroke-linejoin=\"round\"" + (hollow ? " opacity=\"0.45\"" : "") + ">" +
+                   tip + "</path>\n";
         }
         out += std::string("<circle class=\"contact") + extra_class + "\"" + data +
                attr("cx", f2(x)) + attr("cy", f2(y)) + attr("r", hollow ? "5" : "3.5") +
@@ -109,7 +124,7 @@ void draw_events(std::string& out, const View& view, const std::vector<Trajector
                              "\" stroke-width=\"1.2\" opacity=\"0.6\""
                        : std::string(" fill=\"") + event_colour +
                              "\" stroke=\"#ffffff\" stroke-width=\"1\"") +
-               "/>\n";
+               ">" + tip + "</circle>\n";
     }
     out += "</g>\n";
 }
