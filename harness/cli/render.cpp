@@ -12,32 +12,48 @@
 #include "project_options.h"
 #include "run.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace impulse::harness::cli {
 
 namespace {
 
 constexpr const char* render_help =
-    R"(usage: impulse render SCENE|TRAJECTORY [--out FILE.svg] [--root DIR] [--engine NAME | --engine-command CMD]
+    R"(usage: impulse render SCENE|TRAJECTORY [--out FILE.svg] [--scene SCENE] [--root DIR] [--engine NAME | --engine-command CMD]
 
 Draws an SVG picture of the motion: every dynamic body's path, its outline at
-key frames, each collision's contact point and normal, and a legend.
+key frames (labelled with their times), each collision's contact point and
+normal (its time beside it when there are at most 12, and in its tooltip), and
+a legend. A partial trajectory (a run that stopped early) is marked where it
+stopped: a red ring around each body at the last frame, its time and the
+reason in the title and the legend.
 
-The file's "schema" decides what it is:
+The argument is a file or the name of a project scene (as for run and check);
+the file's "schema" decides what it is:
   impulse/scene@1       the scene is simulated (as 'impulse run' would, in the
                         project's first engine or --engine NAME) and drawn
-  impulse/trajectory@1  the recorded run is drawn; the bodies' shapes come from
-                        the project's scene NAME when that scene is the one
-                        the trajectory was recorded from (same scene_sha256),
-                        otherwise only paths, contact points and normals
+  impulse/trajectory@1  the recorded run is drawn, with the static bodies and
+                        the shapes of its scene: --scene SCENE, or else the
+                        scene of the trajectory's name in the project of --root
+                        (or the current folder), then in the project the
+                        trajectory's own folder lies in (found upwards); a scene
+                        is used only when its sha256 is the trajectory's
+                        scene_sha256. Without one: a note saying why, and only
+                        paths, contact points and normals
 
   --out FILE.svg   write the picture here (atomically) instead of standard output
                    (a regular file, never one in goldens/; - is standard output)
+  --scene SCENE    the scene a trajectory was recorded from (a file or a project
+                   scene name); refused (exit 2) when its sha256 is not the
+                   trajectory's scene_sha256
   --root DIR       the project's folder (default: the first impulse.json found
                    from the current folder upwards; without one, the scenes
                    are in ./harness/scenes/)
@@ -47,6 +63,8 @@ The file's "schema" decides what it is:
                    run a scene in an engine that speaks docs/engine-protocol.md
   --quiet          no progress bar (drawn on standard error only when that is a
                    terminal, after about a second of work)
+
+Exit 0 when the picture is written; 2 for bad input (nothing is written).
 )";
 
 // The top-level "schema" string, or "" when there is none; throws InputError
@@ -85,11 +103,82 @@ bool starts_with(const std::string& text, const std::string& prefix) {
     return text.rfind(prefix, 0) == 0;
 }
 
+std::string mismatch_reason(const std::string& scene_file, const std::string& trajectory_file) {
+    return scene_file + " has changed since " + trajectory_file +
+           " was recorded, or is another scene (its sha256 differs from the trajectory's "
+           "scene_sha256)";
+}
+
+// --scene SCENE: the user's choice, so a scene that does not load or is not
+// the one recorded is refused (exit 2) rather than drawn with wrong shapes.
+Scene given_scene(const Project& project, const std::string& argument, const Trajectory& trajectory,
+                  const std::string& trajectory_file) {
+    Scene scene = load_scene(resolve_scene(project, argument));
+    if (scene.sha256 != trajectory.scene_sha256) {
+        throw InputError("--scene", "", mismatch_reason(scene.file, trajectory_file));
+    }
+    return scene;
+}
+
+// The scene the trajectory names, looked for in the project of --root (or
+// the current folder) and then in the project the trajectory file lies in,
+// taken only when its sha256 is the trajectory's scene_sha256. Otherwise
+// empty, with why_not saying what was looked at.
+std::optional<Scene> recorded_scene(const Project& project, const Trajectory& trajectory,
+                                    const std::string& trajectory_file, std::string& why_not) {
+    const std::string& name = trajectory.scene;
+    if (name.empty() || name.find('/') != std::string::npos ||
+        std::filesystem::path(name).extension() == ".json") {
+        why_not = "the trajectory's scene name \"" + name + "\" is no project scene name";
+        return std::nullopt;
+    }
+    std::vector<Project> projects{project};
+    if (std::optional<Project> around = project_around(trajectory_file)) {
+        projects.push_back(std::move(*around));
+    }
+    std::vector<std::string> looked_at;
+    std::vector<std::string> reasons;
+    for (const Project& p : projects) {
+        std::string file;
+        try {
+            file = resolve_scene(p, name);
+        } catch (const InputError& e) {
+            reasons.push_back(std::string("the scenes of ") + p.origin() + " cannot be listed (" +
+                              e.what() + ")");
+            continue;
+        }
+        std::error_code error;
+        const std::string key = std::filesystem::weakly_canonical(file, error).string();
+        if (std::find(looked_at.begin(), looked_at.end(), key) != looked_at.end()) {
+            continue;
+        }
+        looked_at.push_back(key);
+        if (!std::filesystem::is_regular_file(file, error)) {
+            reasons.push_back(file + " does not exist");
+            continue;
+        }
+        try {
+            Scene scene = load_scene(file);
+            if (scene.sha256 == trajectory.scene_sha256) {
+                return scene;
+            }
+            reasons.push_back(mismatch_reason(file, trajectory_file));
+        } catch (const InputError& e) {
+            reasons.push_back(std::string("the scene does not load (") + e.what() + ")");
+        }
+    }
+    for (const std::string& reason : reasons) {
+        why_not += (why_not.empty() ? "" : "; ") + reason;
+    }
+    return std::nullopt;
+}
+
 } // namespace
 
 int render_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-    const Arguments a = parse_arguments(args, {"--out", "--root", "--engine", "--engine-command"},
-                                        {"--help", "--quiet"});
+    const Arguments a =
+        parse_arguments(args, {"--out", "--root", "--engine", "--engine-command", "--scene"},
+                        {"--help", "--quiet"});
     if (a.has_flag("--help")) {
         out << render_help;
         return exit_ok;
@@ -98,8 +187,9 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
         throw UsageError("needs exactly one SCENE or TRAJECTORY, got " +
                          std::to_string(a.positional.size()));
     }
-    const std::string& input = a.positional.front();
     const Project project = find_project(a.option("--root"));
+    // A file, or the name of a project scene (as run and check take it).
+    const std::string input = resolve_scene(project, a.positional.front());
     const EngineSpec engine = chosen_engine(project, a);
     const std::vector<std::string> goldens = protected_folders(project);
     if (const auto path = a.option("--out")) {
@@ -113,6 +203,10 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
     progress.emplace("render", progress_wanted(a.has_flag("--quiet")));
     std::string svg;
     if (starts_with(schema, "impulse/scene@")) {
+        if (a.option("--scene")) {
+            throw UsageError("--scene names the scene of a trajectory, but " + input +
+                             " is a scene itself");
+        }
         const Scene scene = load_scene(input);
         progress->without_bar([&] {
             for (const std::string& warning : scene.warnings) {
@@ -131,33 +225,17 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
         // reader says where.
         const Trajectory trajectory = read_trajectory(text, input);
         std::string why_not;
-        std::string scene_file;
-        try {
-            scene_file = resolve_scene(project, trajectory.scene);
-        } catch (const InputError& e) {
-            why_not = std::string("the project's scenes cannot be listed (") + e.what() + ")";
-        }
-        std::error_code error;
-        if (!why_not.empty()) {
-            // drawn without shapes, as below
-        } else if (!std::filesystem::is_regular_file(scene_file, error)) {
-            why_not = scene_file + " does not exist";
+        const std::optional<Scene> scene =
+            a.option("--scene") ? std::optional<Scene>(
+                                      given_scene(project, *a.option("--scene"), trajectory, input))
+                                : recorded_scene(project, trajectory, input, why_not);
+        if (scene) {
+            svg = render_svg(*scene, trajectory);
         } else {
-            try {
-                const Scene scene = load_scene(scene_file);
-                if (scene.sha256 == trajectory.scene_sha256) {
-                    svg = render_svg(scene, trajectory);
-                } else {
-                    why_not = scene_file + " has changed since the trajectory was recorded " +
-                              "(its sha256 differs from the trajectory's scene_sha256)";
-                }
-            } catch (const InputError& e) {
-                why_not = std::string("the scene does not load (") + e.what() + ")";
-            }
-        }
-        if (!why_not.empty()) {
             progress->without_bar([&] {
-                err << "note: " << why_not << "; drawing paths, contact points and normals only\n"
+                err << "note: " << why_not
+                    << "; drawing paths, contact points and normals only (give the scene with "
+                       "--scene)\n"
                     << std::flush;
             });
             svg = render_svg(trajectory);

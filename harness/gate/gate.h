@@ -44,6 +44,11 @@ std::vector<std::string> unreferenced_goldens(const Project& project);
 // Throws InputError unless `scene_path` is one of the project's scenes: the
 // golden of any other scene would be unreferenced (and pruned).
 void require_project_scene(const Project& project, const std::string& scene_path);
+// The project a file lies in: the first folder from the file's own folder
+// upwards that has an impulse.json (loaded as find_project would) or a
+// harness/scenes folder (the implicit project there). Empty when there is
+// none or its impulse.json is refused: a file outside any project is normal.
+std::optional<Project> project_around(const std::string& file);
 
 std::vector<std::string> canonical_scenes(const GateRoot& root);
 std::string resolve_scene(const GateRoot& root, const std::string& argument);

@@ -165,6 +165,31 @@ void require_project_scene(const Project& project, const std::string& scene_path
                          where);
 }
 
+std::optional<Project> project_around(const std::string& file) {
+    std::error_code error;
+    fs::path dir = fs::absolute(file, error).lexically_normal().parent_path();
+    if (error) {
+        return std::nullopt;
+    }
+    for (;; dir = dir.parent_path()) {
+        if (fs::symlink_status(dir / project_file_name, error).type() != fs::file_type::not_found) {
+            try {
+                Project project = load_project((dir / project_file_name).string());
+                project.root = dir.string();
+                return project;
+            } catch (const InputError&) {
+                return std::nullopt;
+            }
+        }
+        if (fs::is_directory(dir / "harness" / "scenes", error)) {
+            return implicit_project(dir.string());
+        }
+        if (dir == dir.root_path() || dir.parent_path() == dir) {
+            return std::nullopt;
+        }
+    }
+}
+
 std::vector<std::string> canonical_scenes(const GateRoot& root) {
     return canonical_scenes(project_of(root));
 }
