@@ -1,6 +1,7 @@
 // `impulse diff A B`: compare two trajectory files with the rules of `check`.
 #include "cli.h"
 #include "compare.h"
+#include "diff_json.h"
 #include "first_divergence.h"
 #include "trajectory.h"
 
@@ -15,7 +16,7 @@ namespace impulse::harness::cli {
 namespace {
 
 constexpr const char* diff_help =
-    R"(usage: impulse diff A B [--tolerance] [--atol SPEC] [--rtol SPEC] [--ulp SPEC]
+    R"(usage: impulse diff A B [--tolerance] [--atol SPEC] [--rtol SPEC] [--ulp SPEC] [--json]
 
 Compares two impulse/trajectory@1 files with the rules of 'impulse check': A is
 the reference (the golden), B the new trajectory. Frames are matched by index,
@@ -34,6 +35,10 @@ values for needs a tolerance from these options; a field not given is 0.
                   channel=number pairs (position=1e-9,velocity=1e-6)
   --rtol SPEC     relative tolerance, in the same forms
   --ulp SPEC      units in the last place, whole numbers, in the same forms
+  --json          print the comparison as JSON (impulse/diff@1, docs/formats.md)
+                  instead of the text: the verdict, the first divergence (the
+                  same one the text prints), each column's first divergent
+                  value and the per-channel statistics; the exit codes are the same
 
 Prints "identical" or "within tolerance" and exits 0; or prints the first
 divergence (the earliest value over frames and events) with its cause, where
@@ -81,7 +86,7 @@ void require_every_channel(const Trajectory& gold, const std::string& gold_file,
 
 int diff_verb(const std::vector<std::string>& args, std::ostream& out, std::ostream&) {
     const Arguments a =
-        parse_arguments(args, {"--atol", "--rtol", "--ulp"}, {"--help", "--tolerance"});
+        parse_arguments(args, {"--atol", "--rtol", "--ulp"}, {"--help", "--tolerance", "--json"});
     if (a.has_flag("--help")) {
         out << diff_help;
         return exit_ok;
@@ -106,11 +111,17 @@ int diff_verb(const std::vector<std::string>& args, std::ostream& out, std::ostr
         require_every_channel(gold, gold_file, *tolerances);
     }
 
+    const Comparison comparison = compare(gold, value, tolerances);
+    if (a.has_flag("--json")) {
+        out << diff_json(
+            {gold_file, value_file, tolerance_mode, gold.scene_sha256 == value.scene_sha256},
+            comparison);
+        return comparison.passed ? exit_ok : exit_failed;
+    }
     if (gold.scene_sha256 != value.scene_sha256) {
         out << "note: " << gold_file << " and " << value_file
             << " were recorded from different scene files (scene_sha256 differs)\n";
     }
-    const Comparison comparison = compare(gold, value, tolerances);
     if (comparison.identical) {
         out << "identical\n";
         return exit_ok;
