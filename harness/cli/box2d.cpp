@@ -261,7 +261,8 @@ nlohmann::json optional_number(std::optional<double> value) {
 // For an engine other than impulse, the keys that name the impulse engine
 // name the engine under study instead: "engine" (with its "name") for
 // "impulse", "engine_error" for "impulse_error", "engine_integrator" for
-// "impulse_integrator"; a skipped scene has "passed": null and "skipped".
+// "impulse_integrator"; a skipped scene has "passed": null and "skipped", one
+// with no observables "passed": null and "note"; "status" says which.
 std::string write_json(const std::vector<ReferenceComparison>& comparisons,
                        const ReferenceOptions& options) {
     const bool own = options.engine.kind == EngineSpec::Kind::impulse;
