@@ -21,6 +21,30 @@ using namespace picture;
 // Contact marks get a visible time label only while they stay few enough to
 // read; every one has its time in its tooltip.
 constexpr std::size_t labelled_events = 12;
+// At most this many times in one label of contacts at one place.
+constexpr std::size_t times_per_label = 4;
+
+// The time labels placed so far: a label that would overlap one is left out
+// (its time stays in the mark's tooltip), so the ones drawn can be read.
+struct Labels {
+    struct Place {
+        double x0, y0, x1, y1;
+    };
+    std::vector<Place> placed;
+
+    void draw(std::string& out, double x, double y, const std::string& text) {
+        // small_size type: about 0.6 em a character, 1.2 em a line.
+        const Place p{x, y - small_size, x + 0.6 * small_size * static_cast<double>(text.size()),
+                      y + 0.2 * small_size};
+        for (const Place& q : placed) {
+            if (p.x0 < q.x1 && q.x0 < p.x1 && p.y0 < q.y1 && q.y0 < p.y1) {
+                return;
+            }
+        }
+        placed.push_back(p);
+        draw_time_label(out, x, y, text);
+    }
+};
 
 std::string stop_sentence(const TrajectoryPartial& partial) {
     return "Stopped early at t = " + readable(partial.t, 6) + " s: " + partial.reason;
@@ -48,10 +72,28 @@ double draw_motion_title(std::string& body, double width, const Scene* scene,
     return draw_title(body, width, title, paragraphs, {run_info(trajectory)});
 }
 
-// Every body's outline at the key frames, older ones fainter; the first
-// body's outlines carry the key frame's time (the others share it).
+// The first body's key frames carry their times (the other bodies share
+// them): the first and the last before the ones between, so that those two
+// are the ones kept where labels would overlap.
+void label_key_frames(std::string& body, const View& view, const Trajectory& trajectory,
+                      const Track& track, const std::vector<std::size_t>& keys, Labels& labels) {
+    std::vector<std::size_t> order(keys.size());
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        order[i] = i == 0 ? 0 : i == 1 ? keys.size() - 1 : i - 1;
+    }
+    for (const std::size_t i : order) {
+        Pose pose;
+        if (pose_at(trajectory, track, keys[i], pose)) {
+            labels.draw(body, view.sx(pose.p.x) + 8.0, view.sy(pose.p.y) - 6.0,
+                        time_text({trajectory.frames[keys[i]][0]}));
+        }
+    }
+}
+
+// Every body's outline at the key frames, older ones fainter.
 void draw_key_frames(std::string& body, const View& view, const Trajectory& trajectory,
-                     const std::vector<Track>& tracks, const std::vector<std::size_t>& keys) {
+                     const std::vector<Track>& tracks, const std::vector<std::size_t>& keys,
+                     Labels& labels) {
     for (const Track& track : tracks) {
         for (std::size_t i = 0; i < keys.size(); ++i) {
             Pose pose;
@@ -62,23 +104,45 @@ void draw_key_frames(std::string& body, const View& view, const Trajectory& traj
                                    ? static_cast<double>(i) / static_cast<double>(keys.size() - 1)
                                    : 1.0;
             const bool last = i + 1 == keys.size();
-            const double t = trajectory.frames[keys[i]][0];
             draw_outline(body, view, track, pose, 0.22 + 0.78 * age, 0.02 + 0.06 * age,
-                         last ? " stroke-width=\"2\"" : " stroke-width=\"1.3\"", keys[i], t);
-            if (&track == &tracks.front()) {
-                draw_time_label(body, view.sx(pose.p.x) + 8.0, view.sy(pose.p.y) - 6.0, t);
-            }
+                         last ? " stroke-width=\"2\"" : " stroke-width=\"1.3\"", keys[i],
+                         trajectory.frames[keys[i]][0]);
         }
+    }
+    if (!tracks.empty()) {
+        label_key_frames(body, view, trajectory, tracks.front(), keys, labels);
     }
 }
 
+// Contacts at one place (the same pixel) share a label: "t = 0.4515, 1.174 s".
 void draw_event_times(std::string& body, const View& view,
-                      const std::vector<TrajectoryEvent>& events) {
+                      const std::vector<TrajectoryEvent>& events, Labels& labels) {
     if (events.size() > labelled_events) {
         return;
     }
-    for (const TrajectoryEvent& e : events) {
-        draw_time_label(body, view.sx(e.point[0]) + 6.0, view.sy(e.point[1]) + 14.0, e.t);
+    std::vector<bool> done(events.size(), false);
+    for (std::size_t i = 0; i < events.size(); ++i) {
+        if (done[i]) {
+            continue;
+        }
+        const std::string at =
+            f2(view.sx(events[i].point[0])) + "," + f2(view.sy(events[i].point[1]));
+        std::vector<double> times;
+        for (std::size_t k = i; k < events.size(); ++k) {
+            if (!done[k] &&
+                f2(view.sx(events[k].point[0])) + "," + f2(view.sy(events[k].point[1])) == at) {
+                done[k] = true;
+                times.push_back(events[k].t);
+            }
+        }
+        std::string text = time_text(
+            {times.begin(),
+             times.begin() + static_cast<std::ptrdiff_t>(std::min(times.size(), times_per_label))});
+        if (times.size() > times_per_label) {
+            text.insert(text.size() - 2, ", ...");
+        }
+        labels.draw(body, view.sx(events[i].point[0]) + 6.0, view.sy(events[i].point[1]) + 14.0,
+                    text);
     }
 }
 
@@ -171,10 +235,11 @@ std::string render_motion(const Scene* scene, const Trajectory& trajectory) {
     draw_frame_and_grid(body, view, "x (m)", "y (m)");
     draw_static_bodies(body, view, scene);
     const std::vector<std::size_t> keys = key_frames(trajectory.frames.size());
-    draw_key_frames(body, view, trajectory, tracks, keys);
+    Labels labels;
+    draw_key_frames(body, view, trajectory, tracks, keys, labels);
     draw_paths(body, view, trajectory, tracks);
     draw_events(body, view, trajectory.events, false, "");
-    draw_event_times(body, view, trajectory.events);
+    draw_event_times(body, view, trajectory.events, labels);
     draw_stop(body, view, trajectory, tracks);
     draw_plot_border(body, view);
 

@@ -92,8 +92,16 @@ std::string arrow_d(double fx, double fy, Vec2 d, double length) {
            f2(by - half * ux) + "Z";
 }
 
-void draw_time_label(std::string& out, double x, double y, double t) {
-    text_at(out, x, y, "t = " + readable(t) + " s", small_size, muted,
+std::string time_text(const std::vector<double>& times) {
+    std::string text;
+    for (const double t : times) {
+        text += (text.empty() ? "t = " : ", ") + readable(t);
+    }
+    return text + " s";
+}
+
+void draw_time_label(std::string& out, double x, double y, const std::string& text) {
+    text_at(out, x, y, text, small_size, muted,
             " class=\"time\" stroke=\"#ffffff\" stroke-width=\"3\" paint-order=\"stroke\" "
             "stroke-linejoin=\"round\"");
 }

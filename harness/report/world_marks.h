@@ -32,9 +32,11 @@ void draw_outline(std::string& out, const View& view, const Track& track, const 
 // path: the shaft, then a closed head.
 std::string arrow_d(double fx, double fy, Vec2 d, double length);
 
-// "t = 0.4667 s" in small grey type with a white halo, left end at (x, y)
+// "t = 0.4667 s", or "t = 0.4515, 1.174 s" for several times at one place.
+std::string time_text(const std::vector<double>& times);
+// A time label in small grey type with a white halo, its left end at (x, y)
 // (picture pixels): the time a key frame or a contact mark shows.
-void draw_time_label(std::string& out, double x, double y, double t);
+void draw_time_label(std::string& out, double x, double y, const std::string& text);
 
 // Each event's contact point as a dot and its normal (pointing toward body a)
 // as a short arrow; `hollow` draws golden events as rings.
