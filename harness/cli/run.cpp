@@ -14,6 +14,7 @@
 #include "record.h"
 #include "run_json.h"
 
+#include <filesystem>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -65,7 +66,10 @@ void check_json_file(const std::string& json_out, const std::string& trajectory_
         throw UsageError("--json - and the trajectory cannot both go to standard output: "
                          "give the trajectory a file with --out FILE");
     }
-    if (!is_standard_output(json_out) && json_out == trajectory_out) {
+    std::error_code error;
+    if (!is_standard_output(json_out) && !is_standard_output(trajectory_out) &&
+        std::filesystem::weakly_canonical(json_out, error) ==
+            std::filesystem::weakly_canonical(trajectory_out, error)) {
         throw UsageError("--json and --out name the same file, " + json_out);
     }
     check_output_file("--json", json_out, goldens);
