@@ -206,6 +206,13 @@ TEST_CASE("check --compare puts the reference comparison in the same JUnit file 
     REQUIRE(totals != std::string::npos);
     CHECK(o.out.find("compare: 2 scenes", totals) != std::string::npos);
 
+    // A comparison that passes has no row per scene: its summary stays a few lines.
+    if (o.exit_code == 0) {
+        const std::string summary = o.out.substr(o.out.find("compare: 2 scenes"));
+        CHECK(summary.find("\n  ok ") == std::string::npos);
+        CHECK(count_of(summary, "\n") <= 8);
+    }
+
     const Json doc = parse_strict_json<Json>(slurp(json_file), json_file.string());
     REQUIRE(doc["comparison"].is_object());
     CHECK(doc["comparison"]["schema"] == "impulse/engine-comparison@1");
@@ -214,6 +221,14 @@ TEST_CASE("check --compare puts the reference comparison in the same JUnit file 
     const int comparison_code = doc["comparison"]["passed"].get<bool>() ? 0 : 1;
     CHECK(o.exit_code == comparison_code);
     CHECK(doc["exit_code"] == comparison_code);
+
+    // Quiet and passing: the gate's totals line alone.
+    if (comparison_code == 0) {
+        const Outcome quiet =
+            run_tool({"check", "--root", root.string(), "--compare=box2d-2.4", "--quiet"});
+        CHECK(quiet.exit_code == 0);
+        CHECK(quiet.out == "2 scenes: 2 passed, 0 failed, 0 errors\n");
+    }
 }
 
 TEST_CASE("A shard that holds none of the scenes given says which shard holds them",
