@@ -269,13 +269,17 @@ TEST_CASE("Bad --json, --compare and standard outputs: one sentence, exit 2, not
     SECTION("--json to a directory") {
         const fs::path folder = dir.dir / "a-folder";
         fs::create_directories(folder);
-        require_refused(run_tool({"check", "--root", r, "--json", folder.string()}), "--json");
+        const Outcome o = run_tool({"check", "--root", r, "--json", folder.string()});
+        require_refused(o, "--json");
+        CHECK(o.err.find("is a directory") != std::string::npos);
         CHECK(fs::is_directory(folder));
         CHECK(fs::is_empty(folder));
     }
     SECTION("--json into goldens/") {
         const fs::path target = root / "goldens" / "check.json";
-        require_refused(run_tool({"check", "--root", r, "--json", target.string()}), "--json");
+        const Outcome o = run_tool({"check", "--root", r, "--json", target.string()});
+        require_refused(o, "--json");
+        CHECK(o.err.find("goldens folder") != std::string::npos);
         CHECK_FALSE(fs::exists(target));
     }
     SECTION("--compare with an unknown reference") {
@@ -283,10 +287,12 @@ TEST_CASE("Bad --json, --compare and standard outputs: one sentence, exit 2, not
         const Outcome o =
             run_tool({"check", "--root", r, "--compare=no-such-engine", "--json", target.string()});
         require_refused(o, "--compare");
-        CHECK(o.err.find("no-such-engine") != std::string::npos);
+        CHECK(o.err.find("no reference engine is named 'no-such-engine'") != std::string::npos);
         CHECK_FALSE(fs::exists(target));
     }
     SECTION("--json - and --junit - together") {
-        require_refused(run_tool({"check", "--root", r, "--json", "-", "--junit", "-"}), "--json");
+        const Outcome o = run_tool({"check", "--root", r, "--json", "-", "--junit", "-"});
+        require_refused(o, "--json");
+        CHECK(o.err.find("standard output") != std::string::npos);
     }
 }
