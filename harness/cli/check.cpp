@@ -1,21 +1,24 @@
 // `impulse check [SCENE...]`: the gate.
+#include "check_json.h"
+#include "check_outcome.h"
+#include "check_table.h"
 #include "cli.h"
-#include "first_divergence.h"
+#include "comparison_run.h"
 #include "gate.h"
 #include "input_error.h"
-#include "number_format.h"
+#include "junit.h"
 #include "output_path.h"
 #include "progress.h"
 #include "project_options.h"
+#include "reference_option.h"
 #include "report.h"
+#include "text.h"
 #include "tolerance.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
-#include <iomanip>
+#include <optional>
 #include <ostream>
-#include <sstream>
 #include <stdexcept>
 
 namespace impulse::harness::cli {
@@ -44,44 +47,45 @@ SKIPPED: neither a pass nor a failure.
   --atol SPEC       SPEC is a number for every channel, or CHANNEL=V[,CHANNEL=V...]
   --rtol SPEC       channels: position, angle, velocity, angular_velocity,
   --ulp SPEC          impulse, event_time
+  --json FILE       the results as JSON (impulse/check@1, docs/formats.md): per
+                    scene its status, first divergence, per-channel differences,
+                    failed expectations and error sentence, the totals, the
+                    exit code and the accept command; - writes it to standard
+                    output (the table then goes to standard error)
   --junit FILE      JUnit XML: one testcase per scene, <failure> for a physics
                     mismatch, <error> for a broken input or golden; - writes it
-                    to standard output (the table then goes to standard error)
+                    to standard output (the table then goes to standard error);
+                    with --compare a second testsuite, impulse.compare
+  --compare[=LIST]  after the gate, what impulse compare --summary runs over
+                    the same scenes: each in the reference engines of LIST
+                    (as compare's --with; default every reference on this
+                    machine), box2d-2.4 judged against the scene's box2d block.
+                    Its summary lines follow the table, it is in --json and
+                    --junit, and the exit code is the worse of the two
   --report DIR      summary.md (for a pull request) and index.html with pictures
   -j N, --jobs N    check N scenes at once (results identical to -j 1)
   --shard K/N       only the scenes of shard K of N (a scene's shard depends on
-                    its name alone)
-  --quiet           no progress bar (it is drawn on standard error only when that
+                    its name alone); a shard that holds none or only some of
+                    the scenes given says so and where the others are, and
+                    exits 0 when nothing it holds failed
+  --quiet           for a CI log: only the row of each scene that failed or
+                    could not be checked and the totals line (no header, no
+                    passing rows, no details: --report and --json hold them),
+                    the comparison's summary only when it failed, and no
+                    progress bar (it is drawn on standard error only when that
                     is a terminal, after about a second of work)
 
 CI mode (CI set to anything but empty, 0 or false): a golden without a scene
-fails too. check never writes to goldens/: --junit and --report are refused
+fails too. check never writes to goldens/: --json, --junit and --report are refused
 there, as is any path that is not a regular file (a link, FIFO, device).
 The golden's engine and solver block are compared too: other settings or
 another engine fail; another version of the same engine is a warning.
-Exit: 0 all held, 1 a diff, a stale golden, other settings or a failed
-expectation, 2 a broken or unreadable scene or golden, a bad option, or a
-scene that could not be checked (it ran out of memory: its row says so).
+Exit: 0 all held, 1 a diff, a stale golden, other settings, a failed
+expectation or (--compare) a box2d-2.4 row outside tolerance, 2 a broken or
+unreadable scene or golden, a bad option, a scene that could not be checked
+(it ran out of memory: its row says so), or a reference of --compare that is
+not on this machine or failed on a scene.
 )";
-
-const char* status_word(SceneCheck::Status status) {
-    switch (status) {
-    case SceneCheck::Status::passed:
-        return "ok";
-    case SceneCheck::Status::failed:
-        return "FAILED";
-    case SceneCheck::Status::error:
-        return "ERROR";
-    case SceneCheck::Status::skipped:
-        return "SKIPPED";
-    }
-    return "?";
-}
-
-// "ENGINE/NAME" when the project has several engines, else the scene's name.
-std::string row_name(const SceneCheck& check) {
-    return check.engine.empty() ? check.name : check.engine + "/" + check.name;
-}
 
 std::pair<int, int> parse_shard(const std::string& text) {
     const std::size_t slash = text.find('/');
@@ -158,62 +162,102 @@ std::vector<SceneCheck> check_with_progress(const Project& project,
     return check_scenes(project, engines, paths, options);
 }
 
-// The table (one row per scene), the details of each failure, the counts;
-// returns the exit code they mean.
-int print_table(std::ostream& out, const std::vector<SceneCheck>& checks) {
-    std::size_t width = 4;
-    for (const SceneCheck& c : checks) {
-        width = std::max(width, row_name(c).size());
+// --compare[=LIST] is a flag with an optional value: the bare flag becomes
+// "--compare=" (every reference), so it never takes the next argument, a
+// scene, for its list.
+std::vector<std::string> normalise_compare(const std::vector<std::string>& raw) {
+    std::vector<std::string> out;
+    for (const std::string& arg : raw) {
+        out.push_back(arg == "--compare" ? "--compare=" : arg);
     }
-    int passed = 0, failed = 0, errors = 0, skipped = 0;
-    for (const SceneCheck& c : checks) {
-        // SKIPPED is the one word longer than the column: one space still parts it.
-        out << "  " << std::left << std::setw(7) << status_word(c.status)
-            << (c.status == SceneCheck::Status::skipped ? " " : "")
-            << std::setw(static_cast<int>(width) + 2) << printable_path(row_name(c));
-        if (c.status == SceneCheck::Status::skipped) {
-            ++skipped;
-            out << c.message << "\n";
-        } else if (c.status == SceneCheck::Status::passed) {
-            ++passed;
-            out << std::fixed << std::setprecision(3) << c.seconds << " s\n";
-            out.unsetf(std::ios::fixed);
-        } else {
-            (c.status == SceneCheck::Status::failed ? failed : errors) += 1;
-            out << c.message << "\n";
-        }
-    }
-    for (const SceneCheck& c : checks) {
-        if (!c.details.empty()) {
-            out << "\n"
-                << printable_path(row_name(c)) << " (" << printable_path(c.scene_file) << " vs "
-                << printable_path(c.golden_file) << "):\n"
-                << c.details;
-        }
-    }
-    // Scenes that start diverging at the same cause, said once for all.
-    for (const std::string& line : shared_causes(checks)) {
-        out << line << "\n";
-    }
-    out << checks.size() << " scene" << (checks.size() == 1 ? "" : "s") << ": " << passed
-        << " passed, " << failed << " failed, " << errors << " error" << (errors == 1 ? "" : "s")
-        << (skipped > 0 ? ", " + std::to_string(skipped) + " skipped" : "") << "\n";
-    return errors > 0 ? exit_bad_input : failed > 0 ? exit_failed : exit_ok;
+    return out;
 }
 
-} // namespace
-
-int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostream& err) {
-    const Arguments a = parse_arguments(normalise_jobs(raw),
-                                        {"--root", "--engine", "--atol", "--rtol", "--ulp",
-                                         "--junit", "--report", "--jobs", "--shard"},
-                                        {"--help", "--tolerance", "--quiet"});
-    if (a.has_flag("--help")) {
-        out << check_help;
-        return exit_ok;
+// The references --compare asks for, or nullopt (exit 2, said on err) when
+// one is not on this machine. Chosen before any scene runs.
+std::optional<ReferenceChoice> compare_references(const Project& project, const std::string& list,
+                                                  std::ostream& err) {
+    const std::string box2d_off =
+        project.box2d ? "" : printable_path(project.file) + " says \"box2d\": false";
+    try {
+        return chosen_references(list.empty() ? std::nullopt : std::optional<std::string>(list),
+                                 box2d_off, "check --compare", err);
+    } catch (const UsageError& e) {
+        // chosen_references names compare's option; here the user wrote --compare.
+        std::string message = e.what();
+        if (message.rfind(with_option, 0) == 0) {
+            message = "--compare" + message.substr(std::string(with_option).size());
+        }
+        throw UsageError(message);
     }
-    const Project project = find_project(a.option("--root"));
-    const std::vector<EngineSpec> engines = engines_chosen(project, a.option("--engine"));
+}
+
+// What impulse compare --summary runs, over the gate's scenes, in the first
+// engine checked. An engine that fails on a scene is `failure`, its sentence.
+std::optional<ComparisonReport> run_reference_comparison(const std::vector<std::string>& paths,
+                                                         const EngineSpec& engine,
+                                                         const ReferenceChoice& choice, bool quiet,
+                                                         std::string& failure) {
+    ComparisonRequest request;
+    request.options.engine = engine;
+    request.references = choice.used;
+    request.skipped = choice.skipped;
+    request.notes = choice.notes;
+    Progress progress("compare", progress_wanted(quiet));
+    progress.set_total(paths.size(), "scenes");
+    request.on_start = [&progress](const std::string& path) {
+        progress.set_item(std::filesystem::path(path).stem().string());
+    };
+    request.on_done = [&progress] { progress.advance(); };
+    try {
+        return run_comparison(paths, request);
+    } catch (const std::exception& e) {
+        failure = e.what();
+        return std::nullopt;
+    }
+}
+
+// "shard 1/3 holds none of the 1 scene given (drop-box is in shard 2/3)":
+// said when the shard leaves out scenes named on the command line, so a CI
+// job that ran nothing says why. Empty when it holds them all.
+std::string shard_note(const std::vector<std::string>& given, const std::vector<std::string>& held,
+                       int k, int n) {
+    std::string elsewhere;
+    for (const std::string& path : given) {
+        if (std::find(held.begin(), held.end(), path) != held.end()) {
+            continue;
+        }
+        for (int j = 1; j <= n; ++j) {
+            if (!shard({path}, j, n).empty()) {
+                elsewhere += std::string(elsewhere.empty() ? "" : ", ") +
+                             printable_path(std::filesystem::path(path).stem().string()) +
+                             " is in shard " + std::to_string(j) + "/" + std::to_string(n);
+            }
+        }
+    }
+    if (elsewhere.empty()) {
+        return "";
+    }
+    const std::string shard_name = "shard " + std::to_string(k) + "/" + std::to_string(n);
+    const std::string count = held.empty() ? "none" : std::to_string(held.size());
+    return shard_name + " holds " + count + " of the " +
+           plural(given.size(), "scene given", "scenes given") + " (" + elsewhere + ")";
+}
+
+// The command line, read and checked before any scene runs.
+struct CheckRequest {
+    CheckOptions options;
+    std::vector<EngineSpec> engines;
+    std::vector<std::string> paths;
+    bool all = false;
+    bool quiet = false;
+    std::optional<std::string> json, junit, report, shard_spec;
+    std::string shard_note;
+    std::optional<ReferenceChoice> compare; // --compare's references
+    std::vector<std::string> goldens;       // folders no output may go into
+};
+
+CheckOptions gate_options(const Arguments& a) {
     CheckOptions options;
     options.tolerance_mode = a.has_flag("--tolerance");
     options.atol = a.option("--atol");
@@ -226,48 +270,175 @@ int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostr
     if (const auto jobs = a.option("--jobs")) {
         options.jobs = parse_count("--jobs", *jobs, 1);
     }
-    // Output paths are refused before any scene runs.
-    const std::vector<std::string> goldens = protected_folders(project);
-    const std::optional<std::string> junit = a.option("--junit");
-    if (junit) {
-        check_output_file("--junit", *junit, goldens);
-    }
-    if (const auto dir = a.option("--report")) {
-        check_output_folder("--report", *dir, goldens);
-    }
-    const bool junit_to_stdout = junit && is_standard_output(*junit);
-    const bool all = a.positional.empty();
-    std::vector<std::string> paths = scenes_named(project, a.positional);
-    if (const auto spec = a.option("--shard")) {
-        const auto [k, n] = parse_shard(*spec);
-        paths = shard(paths, k, n);
-    }
+    return options;
+}
 
-    // With --junit -, standard output is the XML alone.
-    std::ostream& table = junit_to_stdout ? err : out;
-    const bool ci = ci_mode();
-    table << "check: " << paths.size() << " scene" << (paths.size() == 1 ? "" : "s")
-          << (project.engines.size() > 1 ? " in " + engine_names(engines) : "") << ", "
-          << (options.tolerance_mode ? "within tolerances" : "exact") << (ci ? ", CI mode" : "")
+// Output paths are refused before any scene runs; at most one output is
+// standard output.
+void check_outputs(const CheckRequest& r) {
+    if (r.json && r.junit && is_standard_output(*r.json) && is_standard_output(*r.junit)) {
+        throw UsageError("--json and --junit cannot both be standard output (-)");
+    }
+    if (r.json) {
+        check_output_file("--json", *r.json, r.goldens);
+    }
+    if (r.junit) {
+        check_output_file("--junit", *r.junit, r.goldens);
+    }
+    if (r.report) {
+        check_output_folder("--report", *r.report, r.goldens);
+    }
+}
+
+// Nullopt when a reference of --compare is not on this machine (said on err).
+std::optional<CheckRequest> read_request(const Project& project, const Arguments& a,
+                                         std::ostream& err) {
+    CheckRequest r;
+    r.options = gate_options(a);
+    r.engines = engines_chosen(project, a.option("--engine"));
+    r.goldens = protected_folders(project);
+    r.json = a.option("--json");
+    r.junit = a.option("--junit");
+    r.report = a.option("--report");
+    r.quiet = a.has_flag("--quiet");
+    check_outputs(r);
+    if (const auto list = a.option("--compare")) {
+        r.compare = compare_references(project, *list, err);
+        if (!r.compare) {
+            return std::nullopt;
+        }
+    }
+    r.all = a.positional.empty();
+    r.paths = scenes_named(project, a.positional);
+    if ((r.shard_spec = a.option("--shard"))) {
+        const auto [k, n] = parse_shard(*r.shard_spec);
+        const std::vector<std::string> given = r.paths;
+        r.paths = shard(given, k, n);
+        if (!r.all) {
+            r.shard_note = shard_note(given, r.paths, k, n);
+        }
+    }
+    return r;
+}
+
+// "check: 3 scenes in a, b, exact, CI mode", after the shard's note.
+void print_header(std::ostream& table, const Project& project, const CheckRequest& r, bool ci) {
+    if (!r.shard_note.empty()) {
+        table << "check: " << r.shard_note << "\n";
+    }
+    if (r.quiet) {
+        return;
+    }
+    table << "check: " << plural(r.paths.size(), "scene", "scenes")
+          << (r.shard_spec ? " (shard " + *r.shard_spec + ")" : "")
+          << (project.engines.size() > 1 ? " in " + engine_names(r.engines) : "") << ", "
+          << (r.options.tolerance_mode ? "within tolerances" : "exact") << (ci ? ", CI mode" : "")
           << "\n";
-    std::vector<SceneCheck> checks =
-        check_with_progress(project, engines, paths, options, a.has_flag("--quiet"));
+}
 
-    if (all) {
+int gate_exit_code(const std::vector<SceneCheck>& checks) {
+    const CheckCounts c = count_checks(checks);
+    return c.errors > 0 ? exit_bad_input : c.failed > 0 ? exit_failed : exit_ok;
+}
+
+// The gate's table, then the comparison's summary lines (or why it could
+// not run); returns the worse of the two exit codes.
+int print_results(std::ostream& table, const CheckRequest& r, const std::vector<SceneCheck>& checks,
+                  const std::optional<ComparisonReport>& comparison,
+                  const std::string& comparison_failure) {
+    table << check_table(checks, r.quiet);
+    int code = gate_exit_code(checks);
+    if (!comparison_failure.empty()) {
+        table << "\ncheck --compare: " << comparison_failure << "\n";
+        return exit_bad_input;
+    }
+    if (comparison) {
+        const bool passed = comparison_passed(*comparison);
+        if (!r.quiet || !passed) {
+            table << "\n" << comparison_text(*comparison, true);
+        }
+        code = std::max(code, passed ? exit_ok : exit_failed);
+    }
+    return code;
+}
+
+// --junit, --json and --report, each written whole or not at all.
+void write_outputs(const CheckRequest& r, const std::vector<SceneCheck>& checks,
+                   const std::optional<ComparisonReport>& comparison, CheckRun run,
+                   std::ostream& out, std::ostream& table) {
+    if (r.junit) {
+        write_output_file("--junit", *r.junit,
+                          comparison ? junit_xml(checks, *comparison) : junit_xml(checks),
+                          r.goldens, out);
+    }
+    if (r.json) {
+        run.comparison = comparison;
+        write_output_file("--json", *r.json, check_json(checks, run), r.goldens, out);
+    }
+    if (r.report) {
+        write_report(*r.report, checks);
+        if (!r.quiet) {
+            table << "report: " << printable_path(*r.report) << "/summary.md, "
+                  << printable_path(*r.report) << "/index.html\n";
+        }
+    }
+}
+
+} // namespace
+
+int check_verb(const std::vector<std::string>& raw, std::ostream& out, std::ostream& err) {
+    const Arguments a =
+        parse_arguments(normalise_compare(normalise_jobs(raw)),
+                        {"--root", "--engine", "--atol", "--rtol", "--ulp", "--junit", "--json",
+                         "--report", "--jobs", "--shard", "--compare"},
+                        {"--help", "--tolerance", "--quiet"});
+    if (a.has_flag("--help")) {
+        out << check_help;
+        return exit_ok;
+    }
+    const Project project = find_project(a.option("--root"));
+    const std::optional<CheckRequest> request = read_request(project, a, err);
+    if (!request) {
+        return exit_bad_input;
+    }
+    const CheckRequest& r = *request;
+    // With --junit - or --json -, standard output is that document alone.
+    const bool document_to_stdout =
+        (r.junit && is_standard_output(*r.junit)) || (r.json && is_standard_output(*r.json));
+    std::ostream& table = document_to_stdout ? err : out;
+    const bool ci = ci_mode();
+    print_header(table, project, r, ci);
+    std::vector<SceneCheck> checks =
+        check_with_progress(project, r.engines, r.paths, r.options, r.quiet);
+    std::string comparison_failure;
+    std::optional<ComparisonReport> comparison;
+    if (r.compare) {
+        comparison = run_reference_comparison(r.paths, r.engines.front(), *r.compare, r.quiet,
+                                              comparison_failure);
+    }
+    if (r.all) {
         add_unreferenced_goldens(project, ci, checks, err);
     }
     print_warnings(checks, err);
-
-    const int code = print_table(table, checks);
-    if (junit) {
-        write_output_file("--junit", *junit, junit_xml(checks), goldens, out);
+    if (comparison) {
+        for (const EngineComparison& c : comparison->scenes) {
+            for (const std::string& warning : c.warnings) {
+                err << "warning: " << warning << "\n";
+            }
+        }
     }
-    if (const auto dir = a.option("--report")) {
-        write_report(*dir, checks);
-        table << "report: " << printable_path(*dir) << "/summary.md, " << printable_path(*dir)
-              << "/index.html\n";
+    CheckRun run;
+    run.tolerance_mode = r.options.tolerance_mode;
+    run.ci = ci;
+    run.engine = r.engines.front().name;
+    run.shard = r.shard_spec;
+    if (!r.shard_note.empty()) {
+        run.shard_notes.push_back(r.shard_note);
     }
-    return code;
+    run.comparison_error = comparison_failure;
+    run.exit_code = print_results(table, r, checks, comparison, comparison_failure);
+    write_outputs(r, checks, comparison, run, out, table);
+    return run.exit_code;
 }
 
 } // namespace impulse::harness::cli

@@ -4,6 +4,7 @@
 // in one column per engine beside the exact answer (engine_comparison.h).
 #include "atomic_file.h"
 #include "cli.h"
+#include "comparison_run.h"
 #include "engine_comparison.h"
 #include "engine_option.h"
 #include "gate.h"
@@ -138,33 +139,26 @@ int compare_verb(const std::vector<std::string>& args, std::ostream& out, std::o
     if (!chosen) {
         return exit_bad_input;
     }
-    ComparisonReport report;
-    report.references = chosen->used;
-    report.skipped = chosen->skipped;
-    report.notes = chosen->notes;
-    report.engine = options.engine.name;
-    report.scene_integrator = options.scene_integrator;
-    for (const ReferenceEngine& r : report.references) {
-        options.references.push_back(r.spec);
-        if (const auto n = a.option("--box2d-3-substeps"); n && r.name == "box2d-3") {
-            // Before the scene's path, which run_engine appends.
-            options.references.back().command.insert(
-                options.references.back().command.end(),
-                {"--substeps", std::to_string(parse_count("--box2d-3-substeps", *n, 1))});
-        }
+    ComparisonRequest request;
+    request.options = options;
+    request.references = chosen->used;
+    request.skipped = chosen->skipped;
+    request.notes = chosen->notes;
+    if (const auto n = a.option("--box2d-3-substeps")) {
+        request.box2d_3_substeps = parse_count("--box2d-3-substeps", *n, 1);
     }
     const std::vector<std::string> paths = scenes_named(project, a.positional);
     // Everything is computed before anything is written: a bad scene or a
     // failing engine is one sentence on stderr, with no half output.
-    {
+    const ComparisonReport report = [&] {
         Progress progress("compare", progress_wanted(a.has_flag("--quiet")));
         progress.set_total(paths.size(), "scenes");
-        for (const std::string& path : paths) {
+        request.on_start = [&progress](const std::string& path) {
             progress.set_item(std::filesystem::path(path).stem().string());
-            report.scenes.push_back(compare_engines(path, options));
-            progress.advance();
-        }
-    }
+        };
+        request.on_done = [&progress] { progress.advance(); };
+        return run_comparison(paths, request);
+    }();
     for (const EngineComparison& c : report.scenes) {
         for (const std::string& warning : c.warnings) {
             err << "warning: " << warning << "\n";

@@ -29,15 +29,21 @@ std::string junit_body(const SceneCheck& check) {
     return body;
 }
 
-} // namespace
+std::string totals_attributes(std::size_t tests, std::size_t failures, std::size_t errors) {
+    return " tests=\"" + std::to_string(tests) + "\" failures=\"" + std::to_string(failures) +
+           "\" errors=\"" + std::to_string(errors) + "\"";
+}
 
-std::string junit_xml(const std::vector<SceneCheck>& checks) {
+std::string xml_head(const std::string& totals, const CheckCounts& c) {
+    return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"impulse\"" + totals +
+           " time=\"" + seconds_text(c.seconds) + "\">\n";
+}
+
+// The gate's <testsuite> element, indented for <testsuites>.
+std::string gate_suite(const std::vector<SceneCheck>& checks) {
     const CheckCounts c = count_checks(checks);
-    const std::string totals = " tests=\"" + std::to_string(checks.size()) + "\" failures=\"" +
-                               std::to_string(c.failed) + "\" errors=\"" +
-                               std::to_string(c.errors) + "\"";
-    std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-    out += "<testsuites name=\"impulse\"" + totals + " time=\"" + seconds_text(c.seconds) + "\">\n";
+    const std::string totals = totals_attributes(checks.size(), c.failed, c.errors);
+    std::string out;
     out += "  <testsuite name=\"impulse.gate\"" + totals + " skipped=\"" +
            std::to_string(c.skipped) + "\" time=\"" + seconds_text(c.seconds) + "\">\n";
     for (const SceneCheck& check : checks) {
@@ -65,8 +71,51 @@ std::string junit_xml(const std::vector<SceneCheck>& checks) {
                xml_escape(junit_body(check)) + "</" + element + ">\n";
         out += "    </testcase>\n";
     }
-    out += "  </testsuite>\n</testsuites>\n";
-    return out;
+    return out + "  </testsuite>\n";
+}
+
+// An unsigned attribute of the first element of `xml` that has it; 0 when none.
+std::size_t count_attribute(const std::string& xml, const std::string& name) {
+    const std::string key = " " + name + "=\"";
+    const std::size_t at = xml.find(key);
+    if (at == std::string::npos) {
+        return 0;
+    }
+    std::size_t value = 0;
+    for (std::size_t i = at + key.size(); i < xml.size() && xml[i] >= '0' && xml[i] <= '9'; ++i) {
+        value = value * 10 + static_cast<std::size_t>(xml[i] - '0');
+    }
+    return value;
+}
+
+// comparison_junit's one <testsuite> element, cut from its document so the
+// comparison's XML has one author (engine_comparison_junit.cpp).
+std::string comparison_suite(const ComparisonReport& comparison) {
+    const std::string document = comparison_junit(comparison);
+    const std::size_t begin = document.find("  <testsuite ");
+    const std::string end_tag = "  </testsuite>\n";
+    const std::size_t end = document.rfind(end_tag);
+    if (begin == std::string::npos || end == std::string::npos || end < begin) {
+        return "";
+    }
+    return document.substr(begin, end + end_tag.size() - begin);
+}
+
+} // namespace
+
+std::string junit_xml(const std::vector<SceneCheck>& checks) {
+    const CheckCounts c = count_checks(checks);
+    return xml_head(totals_attributes(checks.size(), c.failed, c.errors), c) + gate_suite(checks) +
+           "</testsuites>\n";
+}
+
+std::string junit_xml(const std::vector<SceneCheck>& checks, const ComparisonReport& comparison) {
+    const CheckCounts c = count_checks(checks);
+    const std::string suite = comparison_suite(comparison);
+    const std::string totals = totals_attributes(checks.size() + count_attribute(suite, "tests"),
+                                                 c.failed + count_attribute(suite, "failures"),
+                                                 c.errors + count_attribute(suite, "errors"));
+    return xml_head(totals, c) + gate_suite(checks) + suite + "</testsuites>\n";
 }
 
 } // namespace impulse::harness
