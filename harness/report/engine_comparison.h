@@ -64,6 +64,16 @@ std::string comparison_json(const ComparisonReport& report);
 // is outside its tolerance; a refusal or a reference not on this machine is
 // <skipped>; the others pass, with their worst error in <system-out>.
 std::string comparison_junit(const ComparisonReport& report);
+// The same cases as one <testsuite name="impulse.compare"> element (indented
+// for <testsuites>) and its counts, for a document that holds other suites
+// too (`impulse check --compare`).
+struct ComparisonSuite {
+    std::string xml;
+    std::size_t tests = 0, failures = 0, skipped = 0;
+};
+ComparisonSuite comparison_junit_suite(const ComparisonReport& report);
+// ` tests="N" failures="N" errors="0" skipped="N"`.
+std::string counts_attributes(const ComparisonSuite& suite);
 
 // An engine's worst relative error against the exact answer over the rows
 // that have a non-zero exact answer, and where.

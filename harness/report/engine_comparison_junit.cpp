@@ -76,7 +76,7 @@ std::string scene_cases(const EngineComparison& c, Totals& totals) {
 
 } // namespace
 
-std::string comparison_junit(const ComparisonReport& report) {
+ComparisonSuite comparison_junit_suite(const ComparisonReport& report) {
     Totals totals;
     std::string cases;
     for (const EngineComparison& c : report.scenes) {
@@ -90,12 +90,25 @@ std::string comparison_junit(const ComparisonReport& report) {
             cases += skipped_case(c.name, r.name, unavailable_sentence(r), totals);
         }
     }
-    const std::string counts = " tests=\"" + std::to_string(totals.tests) + "\" failures=\"" +
-                               std::to_string(totals.failures) + "\" errors=\"0\" skipped=\"" +
-                               std::to_string(totals.skipped) + "\"";
-    return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"impulse\"" + counts +
-           ">\n  <testsuite name=\"impulse.compare\"" + counts + ">\n" + cases +
-           "  </testsuite>\n</testsuites>\n";
+    ComparisonSuite suite;
+    suite.tests = totals.tests;
+    suite.failures = totals.failures;
+    suite.skipped = totals.skipped;
+    suite.xml = "  <testsuite name=\"impulse.compare\"" + counts_attributes(suite) + ">\n" + cases +
+                "  </testsuite>\n";
+    return suite;
+}
+
+std::string counts_attributes(const ComparisonSuite& suite) {
+    return " tests=\"" + std::to_string(suite.tests) + "\" failures=\"" +
+           std::to_string(suite.failures) + "\" errors=\"0\" skipped=\"" +
+           std::to_string(suite.skipped) + "\"";
+}
+
+std::string comparison_junit(const ComparisonReport& report) {
+    const ComparisonSuite suite = comparison_junit_suite(report);
+    return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"impulse\"" +
+           counts_attributes(suite) + ">\n" + suite.xml + "</testsuites>\n";
 }
 
 } // namespace impulse::harness

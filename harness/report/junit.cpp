@@ -74,33 +74,6 @@ std::string gate_suite(const std::vector<SceneCheck>& checks) {
     return out + "  </testsuite>\n";
 }
 
-// An unsigned attribute of the first element of `xml` that has it; 0 when none.
-std::size_t count_attribute(const std::string& xml, const std::string& name) {
-    const std::string key = " " + name + "=\"";
-    const std::size_t at = xml.find(key);
-    if (at == std::string::npos) {
-        return 0;
-    }
-    std::size_t value = 0;
-    for (std::size_t i = at + key.size(); i < xml.size() && xml[i] >= '0' && xml[i] <= '9'; ++i) {
-        value = value * 10 + static_cast<std::size_t>(xml[i] - '0');
-    }
-    return value;
-}
-
-// comparison_junit's one <testsuite> element, cut from its document so the
-// comparison's XML has one author (engine_comparison_junit.cpp).
-std::string comparison_suite(const ComparisonReport& comparison) {
-    const std::string document = comparison_junit(comparison);
-    const std::size_t begin = document.find("  <testsuite ");
-    const std::string end_tag = "  </testsuite>\n";
-    const std::size_t end = document.rfind(end_tag);
-    if (begin == std::string::npos || end == std::string::npos || end < begin) {
-        return "";
-    }
-    return document.substr(begin, end + end_tag.size() - begin);
-}
-
 } // namespace
 
 std::string junit_xml(const std::vector<SceneCheck>& checks) {
@@ -111,11 +84,10 @@ std::string junit_xml(const std::vector<SceneCheck>& checks) {
 
 std::string junit_xml(const std::vector<SceneCheck>& checks, const ComparisonReport& comparison) {
     const CheckCounts c = count_checks(checks);
-    const std::string suite = comparison_suite(comparison);
-    const std::string totals = totals_attributes(checks.size() + count_attribute(suite, "tests"),
-                                                 c.failed + count_attribute(suite, "failures"),
-                                                 c.errors + count_attribute(suite, "errors"));
-    return xml_head(totals, c) + gate_suite(checks) + suite + "</testsuites>\n";
+    const ComparisonSuite suite = comparison_junit_suite(comparison);
+    const std::string totals =
+        totals_attributes(checks.size() + suite.tests, c.failed + suite.failures, c.errors);
+    return xml_head(totals, c) + gate_suite(checks) + suite.xml + "</testsuites>\n";
 }
 
 } // namespace impulse::harness
