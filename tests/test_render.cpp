@@ -230,6 +230,15 @@ TEST_CASE("render_comparison_svg overlays golden and new paths and plots the err
         CHECK(svg.find("1e-18") != std::string::npos); // the floor, and the note saying so
         CHECK(svg.find("high.y") != std::string::npos);
         CHECK(svg.find("t (s)") != std::string::npos);
+        if (s != nullptr) { // the outlines say when they were drawn: the golden's last frame
+            // The legend wraps its notes, so the time follows on a later line.
+            const std::size_t note = svg.find("Outlines at the last frame");
+            REQUIRE(note != std::string::npos);
+            const std::size_t at = svg.find("t\u00a0=\u00a0", note); // no-break spaces
+            REQUIRE(at != std::string::npos);
+            CHECK(at - note < 200);
+            CHECK(std::stod(svg.substr(at + 6)) == Approx(gold.frames.back()[0]).epsilon(1e-3));
+        }
     }
 
     // Identical runs: nothing to mark.

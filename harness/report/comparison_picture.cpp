@@ -204,9 +204,15 @@ std::vector<LegendItem> paths_legend(const Runs& runs, const Divergence* first) 
         legend.push_back({LegendItem::Kind::divergence, "first divergence", ink, "", false});
     }
     if (runs.scene != nullptr) {
+        // The time of the outlines, so the picture says when they were drawn;
+        // no-break spaces keep "t = T s" on one line of the wrapped note.
+        std::string when;
+        if (!runs.gold.frames.empty()) {
+            when = ", t\u00a0=\u00a0" + readable(runs.gold.frames.back()[0]) + "\u00a0s";
+        }
         legend.push_back({LegendItem::Kind::note,
-                          "Outlines at the last frame: golden solid, new dashed.", muted, "",
-                          false});
+                          "Outlines at the last frame" + when + ": golden solid, new dashed.",
+                          muted, "", false});
     }
     return legend;
 }
