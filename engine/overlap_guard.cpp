@@ -88,6 +88,7 @@ void separate_group(World& world, double h, TimeSteppingScratch& s, int g, doubl
     }
     problem.lambda.assign(problem.points.size(), 0.0);
     if (problem.points.empty() || !solve_island(world, problem, d / h).solved) {
+        ++world.work.overlap_guard_unsolved;
         return; // the overlap stays, and max-overlap judges it
     }
     const int b0 = s.guard_groups.body_offsets[gi];
