@@ -5,6 +5,7 @@
 // give the same bits, and `automatic` switches only where events cannot go on.
 #include "energy_guard.h"
 #include "manifold.h"
+#include "overlap_guard.h"
 #include "support.h"
 #include "time_stepping_scratch.h"
 #include "world.h"
@@ -502,4 +503,38 @@ TEST_CASE("the energy guard checks a body the overlap guard moved outside any is
         CHECK(l.world.work.energy_guard_steps == 0);
         CHECK(l.world.work.energy_guard_lone_bodies == 0);
     }
+}
+
+TEST_CASE("the overlap guard holds a pair its own move created: a disc pushed into a wall",
+          "[unit][time-stepping]") {
+    // A light disc 1 mm from a wall, a heavy disc 5 cm inside it from the
+    // other side, and only the two discs' pair foreseen by the step (their
+    // reach 0): separating them pushes the light disc about 5 cm, through the
+    // 1 mm gap, into the wall, a pair the step had not foreseen.
+    const double r = 0.5;
+    const double gap = 1e-3;
+    const double overlap = 0.05;
+    World world =
+        make_world({static_body(make_box(1.0, 5.0), {-1.0, 0.0}),
+                    dynamic_body(make_circle(r), 1.0, {r + gap, 0.0}),
+                    dynamic_body(make_circle(r), 1000.0, {r + gap + 2.0 * r - overlap, 0.0})},
+                   {0.0, 0.0}, 0.5, time_stepping());
+    TimeSteppingScratch s;
+    for (const Body& b : world.bodies) {
+        s.start.push_back(b.state);
+        s.poses.push_back(transform_of(b.state));
+    }
+    s.reach.assign(3, 0.0);
+    s.pairs = {{1, 2, world.solver.contact_tolerance}};
+    guard_overlaps(world, h, s);
+    const auto gap_of = [&world](std::size_t i, std::size_t k) {
+        return separation(world.bodies[i].shape, transform_of(world.bodies[i].state),
+                          world.bodies[k].shape, transform_of(world.bodies[k].state));
+    };
+    CHECK(world.work.overlap_guard_pair_rebuilds == 1);
+    CHECK(gap_of(1, 0) >= -1e-6); // the issue's max-overlap target
+    CHECK(gap_of(1, 2) >= -1e-6);
+    // The heavy disc took the move the wall refused the light one: the light
+    // disc at x >= r against the wall, the heavy one touching it at >= 3 r.
+    CHECK(world.bodies[2].state.position.x >= 3.0 * r - 1e-6);
 }
