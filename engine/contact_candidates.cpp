@@ -88,6 +88,22 @@ ContactPoint candidate_point(const World& world, int pair, int a, int b, const C
             relative_normal_velocity(ba, bb, contact.point, contact.normal)};
 }
 
+void find_pairs_around(World& world, double grow, TimeSteppingScratch& s) {
+    const std::size_t n = world.bodies.size();
+    s.poses.resize(n);
+    s.boxes.resize(n);
+    s.reach.resize(n);
+    const double d = world.solver.contact_tolerance;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Body& body = world.bodies[i];
+        s.poses[i] = transform_of(body.state);
+        const double margin = (body.is_static() ? 0.0 : grow) + d +
+                              rounding_margin(s.poses[i], body.shape, rotation_radius(body.shape));
+        s.boxes[i] = aabb_of(body.shape, s.poses[i], margin);
+    }
+    find_pairs(world, s);
+}
+
 void find_contact_candidates(World& world, double h, TimeSteppingScratch& s) {
     const std::size_t n = world.bodies.size();
     s.poses.resize(n);

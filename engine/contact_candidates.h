@@ -21,6 +21,12 @@ double rotation_radius(const Shape& shape);
 // s.reach_floor[i] (sized to the world).
 void find_contact_candidates(World& world, double h, TimeSteppingScratch& s);
 
+// The overlap guard's pairs when its moves carried a body past its reach: at
+// the bodies' current poses, every pair whose boxes, each dynamic body's
+// grown by `grow`, overlap; refills s.poses, s.boxes and s.pairs (sorted by
+// (a, b)) and leaves s.points as they were.
+void find_pairs_around(World& world, double grow, TimeSteppingScratch& s);
+
 // a_i = J_i M^-1 f: the relative normal acceleration gravity alone gives the
 // point (0 between two dynamic bodies, g . n against a static one).
 double gravity_normal_acceleration(const World& world, const ContactPoint& point);

@@ -15,8 +15,10 @@ namespace impulse {
 // magnitudes, its velocities are scaled by sqrt(1 - dE / K), or, when its
 // kinetic energy K is less than dE, it goes back to its poses at the step's
 // start, at rest (energy P(x_k) <= E_k). Energy then never rises beyond
-// rounding, whatever moved the bodies. Counted in world.work.energy_guard_steps
-// and energy_guard_joules.
+// rounding, whatever moved the bodies. A body in no island that the overlap
+// guard moved is checked the same way on its own. Counted in
+// world.work.energy_guard_steps and energy_guard_joules, and by path in
+// energy_guard_rescaled, energy_guard_returned and energy_guard_lone_bodies.
 void guard_energy(World& world, TimeSteppingScratch& s);
 
 } // namespace impulse

@@ -97,6 +97,7 @@ class TimeStep {
     bool impacts(int first, int last, bool& pushed);
     bool hold(int first, int last, bool& pushed);
     void restore();
+    bool is_impact(int r) const;
 
     World& world_;
     TimeSteppingScratch& s_;
@@ -146,6 +147,7 @@ std::optional<StepError> TimeStep::run() {
         if (attempt == max_reach_retries || !outran_reach()) {
             break;
         }
+        ++world_.work.reach_retries;
         restore();
         events_.resize(events_at_start);
     }
@@ -237,8 +239,23 @@ std::optional<StepError> TimeStep::island(int i) {
     return std::nullopt;
 }
 
-// Phase 1, Newton's law at the step's start: only when some point approaches
-// faster than v_rest and will touch within the step.
+// A point that starts phase 1: it approaches faster than v_rest and will
+// touch within the step.
+bool TimeStep::is_impact(int r) const {
+    const ContactPoint& point = s_.points[static_cast<std::size_t>(r)];
+    return point.vn < -v_rest_ &&
+           point.contact.separation +
+                   h_ * (point.vn + h_ * gravity_normal_acceleration(world_, point)) <=
+               d_;
+}
+
+// Phase 1, Newton's law at the step's start: only when some point is an
+// impact (is_impact). Rows: the impacts, and every touching point that does
+// not separate. A row approaching faster than v_rest bounces (e); slower, it
+// is held (e = 0): below v_rest a bounce would rise less than d
+// (docs/engine.md, "Resting contact"). Only a bouncing row that took an
+// impulse is a collision event; a held row that passed the impact on is a
+// contact held, like every holding impulse of phase 2.
 bool TimeStep::impacts(int first, int last, bool& pushed) {
     IslandProblem& p = s_.problem;
     p.rows.clear();
@@ -246,12 +263,9 @@ bool TimeStep::impacts(int first, int last, bool& pushed) {
     for (int l = first; l < last; ++l) {
         const int r = s_.islands.links_of[static_cast<std::size_t>(l)];
         const ContactPoint& point = s_.points[static_cast<std::size_t>(r)];
-        const double gap = point.contact.separation;
-        const bool impact =
-            point.vn < -v_rest_ &&
-            gap + h_ * (point.vn + h_ * gravity_normal_acceleration(world_, point)) <= d_;
+        const bool impact = is_impact(r);
         any_impact = any_impact || impact;
-        if (impact || (gap <= d_ && point.vn <= 0.0)) {
+        if (impact || (point.contact.separation <= d_ && point.vn <= 0.0)) {
             p.rows.push_back(r);
         }
     }
@@ -274,7 +288,9 @@ bool TimeStep::impacts(int first, int last, bool& pushed) {
     for (std::size_t i = 0; i < p.points.size(); ++i) {
         if (p.lambda[i] > 0.0) {
             pushed = true;
-            const ContactPoint& point = p.points[i];
+        }
+        const ContactPoint& point = p.points[i];
+        if (p.lambda[i] > 0.0 && point.vn < -v_rest_) {
             const double vn_after =
                 relative_normal_velocity(world_.bodies[static_cast<std::size_t>(point.a)],
                                          world_.bodies[static_cast<std::size_t>(point.b)],

@@ -61,6 +61,7 @@ struct TimeSteppingScratch {
     std::vector<double> island_energy; // per island: energy at the step's start
     std::vector<char> island_pushed;   // per island: some impulse acted
     std::vector<char> guard_moved;     // per body: the overlap guard moved it
+    std::vector<int> lone_body;        // the energy guard's one-body set
     IslandProblem problem;
     std::vector<double> pair_gap; // the overlap guard's separation of each candidate pair
     // The overlap guard's groups: candidate pairs within contact_tolerance

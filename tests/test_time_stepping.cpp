@@ -3,8 +3,11 @@
 // v = 0, an impact is Eq. 9's, piles settle under every integrator and both
 // steppings with no overlap and no energy gained, world and local stepping
 // give the same bits, and `automatic` switches only where events cannot go on.
+#include "energy_guard.h"
 #include "manifold.h"
+#include "overlap_guard.h"
 #include "support.h"
+#include "time_stepping_scratch.h"
 #include "world.h"
 
 #include <catch2/catch.hpp>
@@ -243,6 +246,18 @@ double run_pile(World& world, double at_rest_after) {
         previous = now;
     }
     CHECK(!events.empty()); // the discs did bounce (e = 0.5)
+    // An impact is a point approaching faster than v_rest = sqrt(2 |g| d);
+    // a contact held at rest, or one the discretisation turns under a
+    // sliding body, is none: a settled pile records nothing.
+    const double v_rest = std::sqrt(2.0 * g * world.solver.contact_tolerance);
+    for (const CollisionEvent& event : events) {
+        INFO("event at t = " << event.time << " between " << event.body_a << " and "
+                             << event.body_b);
+        CHECK(event.vn_before < -v_rest);
+        if (at_rest_after > 0.0) {
+            CHECK(event.time < at_rest_after);
+        }
+    }
     return deepest;
 }
 
@@ -432,4 +447,94 @@ TEST_CASE("a pile of 200 mixed discs comes nearly to rest under both steppings",
     for (std::size_t i = 0; i < worlds[0].bodies.size(); ++i) {
         REQUIRE(worlds[0].bodies[i].state.position == worlds[1].bodies[i].state.position);
     }
+}
+
+namespace {
+
+// A world of one disc of mass m resting on a floor, with the energy guard's
+// scratch as a step would leave it when the overlap guard had lifted the disc
+// by `lift` while it was in no island (a candidate pair without points).
+struct LoneLift {
+    World world;
+    TimeSteppingScratch scratch;
+};
+
+LoneLift lone_lift(double m, Vec2 velocity, double lift) {
+    LoneLift l{make_world({static_body(make_box(5.0, 0.5), {0.0, -0.5}),
+                           dynamic_body(make_circle(0.25), m, {0.0, 0.25}, 0.0, velocity)},
+                          {0.0, -g}, 0.5, time_stepping()),
+               {}};
+    l.scratch.start = {l.world.bodies[0].state, l.world.bodies[1].state};
+    l.scratch.in_island.assign(2, 0);
+    l.scratch.guard_moved = {0, 1};
+    l.world.bodies[1].state.position.y += lift;
+    return l;
+}
+
+} // namespace
+
+TEST_CASE("the energy guard checks a body the overlap guard moved outside any island",
+          "[unit][time-stepping]") {
+    const double m = 2.0;
+    const double lift = 1e-3;
+    SECTION("at rest it cannot pay for the lift: back to its pose at the step's start") {
+        LoneLift l = lone_lift(m, {0.0, 0.0}, lift);
+        guard_energy(l.world, l.scratch);
+        CHECK(l.world.bodies[1].state.position.y == 0.25);
+        CHECK(l.world.work.energy_guard_lone_bodies == 1);
+        CHECK(l.world.work.energy_guard_returned == 1);
+        CHECK(l.world.work.energy_guard_rescaled == 0);
+        CHECK(l.world.work.energy_guard_joules == Approx(m * g * lift).epsilon(1e-9));
+    }
+    SECTION("moving, its speed pays: v^2 drops by 2 |g| lift") {
+        const double v = 1.0;
+        LoneLift l = lone_lift(m, {v, 0.0}, lift);
+        guard_energy(l.world, l.scratch);
+        const BodyState& s = l.world.bodies[1].state;
+        CHECK(s.position.y == 0.25 + lift);
+        CHECK(length_squared(s.velocity) == Approx(v * v - 2.0 * g * lift).epsilon(1e-12));
+        CHECK(l.world.work.energy_guard_rescaled == 1);
+        CHECK(l.world.work.energy_guard_returned == 0);
+    }
+    SECTION("a body the guard did not move is not its business") {
+        LoneLift l = lone_lift(m, {0.0, 0.0}, lift);
+        l.scratch.guard_moved = {0, 0};
+        guard_energy(l.world, l.scratch);
+        CHECK(l.world.work.energy_guard_steps == 0);
+        CHECK(l.world.work.energy_guard_lone_bodies == 0);
+    }
+}
+
+TEST_CASE("the overlap guard holds a pair its own move created: a disc pushed into a wall",
+          "[unit][time-stepping]") {
+    // A light disc 1 mm from a wall, a heavy disc 5 cm inside it from the
+    // other side, and only the two discs' pair foreseen by the step (their
+    // reach 0): separating them pushes the light disc about 5 cm, through the
+    // 1 mm gap, into the wall, a pair the step had not foreseen.
+    const double r = 0.5;
+    const double gap = 1e-3;
+    const double overlap = 0.05;
+    World world =
+        make_world({static_body(make_box(1.0, 5.0), {-1.0, 0.0}),
+                    dynamic_body(make_circle(r), 1.0, {r + gap, 0.0}),
+                    dynamic_body(make_circle(r), 1000.0, {r + gap + 2.0 * r - overlap, 0.0})},
+                   {0.0, 0.0}, 0.5, time_stepping());
+    TimeSteppingScratch s;
+    for (const Body& b : world.bodies) {
+        s.start.push_back(b.state);
+        s.poses.push_back(transform_of(b.state));
+    }
+    s.reach.assign(3, 0.0);
+    s.pairs = {{1, 2, world.solver.contact_tolerance}};
+    guard_overlaps(world, h, s);
+    const auto gap_of = [&world](std::size_t i, std::size_t k) {
+        return separation(world.bodies[i].shape, transform_of(world.bodies[i].state),
+                          world.bodies[k].shape, transform_of(world.bodies[k].state));
+    };
+    CHECK(world.work.overlap_guard_pair_rebuilds == 1);
+    CHECK(gap_of(1, 0) >= -1e-6); // the max-overlap target
+    CHECK(gap_of(1, 2) >= -1e-6);
+    // The heavy disc took the move the wall refused the light one: the light
+    // disc at x >= r against the wall, the heavy one touching it at >= 3 r.
+    CHECK(world.bodies[2].state.position.x >= 3.0 * r - 1e-6);
 }
