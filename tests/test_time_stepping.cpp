@@ -538,3 +538,39 @@ TEST_CASE("the overlap guard holds a pair its own move created: a disc pushed in
     // disc at x >= r against the wall, the heavy one touching it at >= 3 r.
     CHECK(world.bodies[2].state.position.x >= 3.0 * r - 1e-6);
 }
+
+// pile_200 dropped and settled (the test above: at rest by 5 s), then 120
+// more steps. Before the holding solve's residual was cut to d / 8h and a
+// held point that sank below d / 4 was pushed back, each of those steps made
+// an overlap-guard pass and about 30 products (docs/engine.md, "Dense
+// contact").
+TEST_CASE("a settled pile takes one product per island per step and no overlap-guard pass",
+          "[unit][time-stepping]") {
+    World world =
+        make_world(pile_200(), {0.0, -g}, 0.5, time_stepping(Integrator::symplectic_euler));
+    std::vector<CollisionEvent> events;
+    const int settle = 360;
+    const int settled = 120;
+    WorkCounters at_rest;
+    for (int k = 0; k < settle + settled; ++k) {
+        if (k == settle) {
+            at_rest = world.work;
+        }
+        REQUIRE_FALSE(step(world, k * h, h, events));
+        if (k >= settle) {
+            REQUIRE(deepest_overlap(world) <= world.solver.contact_tolerance);
+        }
+    }
+    const WorkCounters& now = world.work;
+    const long long islands = now.islands - at_rest.islands;
+    CHECK(islands >= settled);                                   // the pile is held in every step
+    CHECK(now.direct_solves == at_rest.direct_solves);           // its islands are MPRGP's
+    CHECK(now.solver_sweeps - at_rest.solver_sweeps == islands); // one product each
+    CHECK(now.overlap_guard_passes == at_rest.overlap_guard_passes);
+    // Not yet: the energy guard still returns the islands to their poses at
+    // the step's start in every step (the holding solve's residual shuffles
+    // the discs by ~1e-10 m, some of them up), so the pile does not move.
+    WARN("energy-guard returns while settled: "
+         << now.energy_guard_returned - at_rest.energy_guard_returned << " in " << settled
+         << " steps");
+}
