@@ -540,10 +540,9 @@ TEST_CASE("the overlap guard holds a pair its own move created: a disc pushed in
 }
 
 // pile_200 dropped and settled (the test above: at rest by 5 s), then 120
-// more steps. Before the holding solve's residual was cut to d / 8h and a
-// held point that sank below d / 4 was pushed back, each of those steps made
-// an overlap-guard pass and about 30 products (docs/engine.md, "Dense
-// contact").
+// more steps. Before the holding residual of an island above 20 points was
+// cut from d / h to d / 32h, each of those steps made an overlap-guard pass
+// and about 30 products (docs/engine.md, "A settled pile and the guards").
 TEST_CASE("a settled pile takes one product per island per step and no overlap-guard pass",
           "[unit][time-stepping]") {
     World world =
