@@ -84,12 +84,14 @@ bool any_positive(const std::vector<double>& values) {
 // rest: one guard pass, 651 products and 32 returns per step; d / 8h: 260
 // products, d / 32h: 79). Pushing a held point deeper than d / 4 back ended
 // the guard passes with d / 8h, but its separating velocity kept three of the
-// drawn sweep piles moving past their 60 s (docs/engine.md, "A settled pile").
+// drawn sweep piles moving past their 60 s (docs/engine.md, "A settled pile
+// and the guards").
 constexpr double contact_residual_fraction = 1.0 / 32.0;
 // Islands of at most this many points keep the residual d / h: on the stack
-// of ten boxes (20 points; test_dense_contact.cpp) the residual d / 8h made
-// the energy guard act in 201 of 600 steps and the boxes sink by 2.3e-9 m,
-// where d / h leaves the answer exact to 1e-12; the cause is not found yet.
+// of ten boxes (20 points; test_dense_contact.cpp) a residual of d / 4h or
+// d / 8h made the energy guard act (d / 8h: in 201 of 600 steps) and the
+// boxes sink by up to 2.3e-9 m, where d / h and d / 2h leave the impulses
+// exact to 1e-12; the cause is not found yet.
 constexpr std::size_t tight_residual_points = 20;
 
 StepError unsolved(const IslandProblem& problem, double t0) {
