@@ -22,7 +22,7 @@ inline constexpr IterativeSolver iterative_solver = IterativeSolver::mprgp;
 
 // MPRGP's cap in matrix products: this many per solver.max_search_iterations
 // (2000 at the default 200; one product costs about one PGS sweep; a cold
-// pile of 1000 discs needs about 1300).
+// pile of 1000 discs needs about 1650, scaled).
 inline constexpr int iterative_products_per_search_iteration = 10;
 
 struct IslandSolve {
