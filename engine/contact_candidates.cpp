@@ -88,18 +88,27 @@ ContactPoint candidate_point(const World& world, int pair, int a, int b, const C
             relative_normal_velocity(ba, bb, contact.point, contact.normal)};
 }
 
+namespace {
+
+// Body i's pose and its box grown by `grow` (its reach), the contact
+// tolerance and the rounding of its corners.
+void box_body(const World& world, std::size_t i, double grow, TimeSteppingScratch& s) {
+    const Body& body = world.bodies[i];
+    s.poses[i] = transform_of(body.state);
+    const double margin = grow + world.solver.contact_tolerance +
+                          rounding_margin(s.poses[i], body.shape, rotation_radius(body.shape));
+    s.boxes[i] = aabb_of(body.shape, s.poses[i], margin);
+}
+
+} // namespace
+
 void find_pairs_around(World& world, double grow, TimeSteppingScratch& s) {
     const std::size_t n = world.bodies.size();
     s.poses.resize(n);
     s.boxes.resize(n);
     s.reach.resize(n);
-    const double d = world.solver.contact_tolerance;
     for (std::size_t i = 0; i < n; ++i) {
-        const Body& body = world.bodies[i];
-        s.poses[i] = transform_of(body.state);
-        const double margin = (body.is_static() ? 0.0 : grow) + d +
-                              rounding_margin(s.poses[i], body.shape, rotation_radius(body.shape));
-        s.boxes[i] = aabb_of(body.shape, s.poses[i], margin);
+        box_body(world, i, world.bodies[i].is_static() ? 0.0 : grow, s);
     }
     find_pairs(world, s);
 }
@@ -109,14 +118,9 @@ void find_contact_candidates(World& world, double h, TimeSteppingScratch& s) {
     s.poses.resize(n);
     s.reach.resize(n);
     s.boxes.resize(n);
-    const double d = world.solver.contact_tolerance;
     for (std::size_t i = 0; i < n; ++i) {
-        const Body& body = world.bodies[i];
-        s.poses[i] = transform_of(body.state);
-        s.reach[i] = std::max(body_reach(world, body, h), s.reach_floor[i]);
-        const double margin =
-            s.reach[i] + d + rounding_margin(s.poses[i], body.shape, rotation_radius(body.shape));
-        s.boxes[i] = aabb_of(body.shape, s.poses[i], margin);
+        s.reach[i] = std::max(body_reach(world, world.bodies[i], h), s.reach_floor[i]);
+        box_body(world, i, s.reach[i], s);
     }
     find_pairs(world, s);
 

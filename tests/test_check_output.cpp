@@ -7,6 +7,7 @@
 // sentence, exit 2, nothing written.
 #include "gate.h"
 #include "strict_json.h"
+#include "support/bad_input.h"
 #include "support/files.h"
 #include "support/roots.h"
 #include "support/tool.h"
@@ -72,15 +73,6 @@ std::vector<std::string> lines_of(const std::string& text) {
         lines.push_back(text.substr(from));
     }
     return lines;
-}
-
-std::size_t count_of(const std::string& text, const std::string& part) {
-    std::size_t n = 0;
-    for (std::size_t at = text.find(part); at != std::string::npos;
-         at = text.find(part, at + part.size())) {
-        ++n;
-    }
-    return n;
 }
 
 // A refusal: one line on standard error naming `option`, exit 2, nothing on

@@ -3,26 +3,19 @@
 // the change, the long parts folded, failed expectations printed once.
 #include "compare.h"
 #include "summary.h"
+#include "support/bad_input.h"
 
 #include <catch2/catch.hpp>
 #include <string>
 #include <vector>
 
 using namespace impulse::harness;
+using impulse::test::count_of;
 
 namespace {
 
 // GitHub's limit for a pull-request comment.
 constexpr std::size_t comment_limit = 65536;
-
-std::size_t count_of(const std::string& text, const std::string& part) {
-    std::size_t n = 0;
-    for (std::size_t at = text.find(part); at != std::string::npos;
-         at = text.find(part, at + part.size())) {
-        ++n;
-    }
-    return n;
-}
 
 // A failed scene with a long message and 80 lines of details, as a broken
 // engine gives for a scene of many bodies.
