@@ -144,4 +144,64 @@ void find_contact_candidates(World& world, double h, TimeSteppingScratch& s) {
     }
 }
 
+Aabb swept_box(const World& world, std::size_t b, const BodyState& start, double turn) {
+    const Body& body = world.bodies[b];
+    const double rr = rotation_radius(body.shape);
+    const double grow = turn + world.solver.contact_tolerance;
+    const Transform from_pose = transform_of(start);
+    const Transform to_pose = transform_of(body.state);
+    const Aabb from =
+        aabb_of(body.shape, from_pose, grow + rounding_margin(from_pose, body.shape, rr));
+    const Aabb to = aabb_of(body.shape, to_pose, grow + rounding_margin(to_pose, body.shape, rr));
+    return {{std::min(from.lower.x, to.lower.x), std::min(from.lower.y, to.lower.y)},
+            {std::max(from.upper.x, to.upper.x), std::max(from.upper.y, to.upper.y)}};
+}
+
+namespace {
+
+bool is_candidate_pair(const TimeSteppingScratch& s, const Pair& p) {
+    const CandidatePair key{p.a, p.b, 0.0};
+    const auto it = std::lower_bound(s.pairs.begin(), s.pairs.end(), key, pair_less);
+    return it != s.pairs.end() && it->a == p.a && it->b == p.b;
+}
+
+bool deeper_than_tolerance(const World& world, const Pair& p) {
+    const Body& a = world.bodies[static_cast<std::size_t>(p.a)];
+    const Body& b = world.bodies[static_cast<std::size_t>(p.b)];
+    const double d = world.solver.contact_tolerance;
+    const Manifold m = collide(a.shape, transform_of(a.state), b.shape, transform_of(b.state), d,
+                               world.solver.vertex_normal);
+    for (int k = 0; k < m.point_count; ++k) {
+        if (m.points[static_cast<std::size_t>(k)].separation < -d) {
+            return true;
+        }
+    }
+    return false;
+}
+
+} // namespace
+
+bool meets_unheld(World& world, int b, const std::vector<int>& outran,
+                  const std::vector<Aabb>& swept, const std::vector<char>& is_outran,
+                  TimeSteppingScratch& s) {
+    const Aabb& box = swept[static_cast<std::size_t>(b)];
+    bool meets = false;
+    const auto test = [&](int k) {
+        const std::size_t kk = static_cast<std::size_t>(k);
+        if (meets || k == b || !overlaps(box, is_outran[kk] != 0 ? swept[kk] : s.boxes[kk])) {
+            return;
+        }
+        ++world.work.narrow_phase_queries;
+        const Pair p = pair_of(world, b, k);
+        meets = !is_candidate_pair(s, p) || deeper_than_tolerance(world, p);
+    };
+    // The grid holds every body's box at the step's start; a body that also
+    // outran its reach is met wherever its swept box lies.
+    s.grid.query(box, test);
+    for (const int k : outran) {
+        test(k);
+    }
+    return meets;
+}
+
 } // namespace impulse

@@ -27,6 +27,25 @@ void find_contact_candidates(World& world, double h, TimeSteppingScratch& s);
 // (a, b)) and leaves s.points as they were.
 void find_pairs_around(World& world, double grow, TimeSteppingScratch& s);
 
+// Body b's box over a step from `start` to its current state: its boxes at
+// both poses, each grown by `turn` (at least R |angle change|, how far turning
+// carries a vertex off its straight path), by d and by the rounding of its
+// corners.
+Aabb swept_box(const World& world, std::size_t b, const BodyState& start, double turn);
+
+// Whether body b, which ended the step further from its start than its reach
+// (its box in s.boxes was grown for less), may have touched a body the step
+// held no point with. Its swept box (start and end poses, grown by its
+// turning and d) is tested against every other body's: s.boxes[k] for a body
+// that kept within its reach (that box covers its whole motion), swept[k] for
+// one that did not (outran lists them, is_outran[k] != 0 flags them). Yes when the boxes meet and
+// the pair is no candidate, or when it is and its manifold at the end poses has a point deeper than
+// d (a point farther apart at the start than the pair's reach, not held). s.grid and s.pairs are
+// the step's; swept and is_outran are per body.
+bool meets_unheld(World& world, int b, const std::vector<int>& outran,
+                  const std::vector<Aabb>& swept, const std::vector<char>& is_outran,
+                  TimeSteppingScratch& s);
+
 // a_i = J_i M^-1 f: the relative normal acceleration gravity alone gives the
 // point (0 between two dynamic bodies, g . n against a static one).
 double gravity_normal_acceleration(const World& world, const ContactPoint& point);

@@ -46,14 +46,25 @@ struct TimeSteppingScratch {
     std::vector<double> reach;       // per body: how far any of its points moves in the step
     std::vector<double> reach_floor; // per body: at least this (a retried step's lesson)
     std::vector<Aabb> boxes;
+    // The bodies that ended an attempt further from their start than their
+    // reach: the list, a flag and their swept boxes per body.
+    std::vector<int> outran;
+    std::vector<char> is_outran;
+    std::vector<Aabb> swept;
     UniformGrid grid;
     std::vector<CandidatePair> pairs; // sorted by (a, b)
     // Every candidate point of the step, in (a, b, k) order; a point's `pair`
     // is its index in `pairs`, feature its index k in the pair's manifold.
     std::vector<ContactPoint> points;
     std::vector<int> feature;
-    std::vector<double> warm; // per point: last step's holding impulse, or 0
-    std::vector<double> held; // per point: this step's holding impulse
+    std::vector<double> warm;        // per point: last step's holding impulse, or 0
+    std::vector<double> held;        // per point: this step's holding impulse
+    std::vector<double> impact;      // per point: this attempt's impact impulse
+    std::vector<double> impact_warm; // per point: the impact warm start (a retry's)
+    // A retried step's warm starts: the abandoned attempt's holding and impact
+    // impulses in (a, b, k) order.
+    std::vector<WarmImpulse> retry_held;
+    std::vector<WarmImpulse> retry_impact;
     std::vector<IslandLink> links;
     Islands islands;
     IslandScratch island_scratch;
