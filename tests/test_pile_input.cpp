@@ -196,6 +196,34 @@ TEST_CASE("A pile's spacing or walls out of range is exit 2 naming pile.spacing 
     }
 }
 
+TEST_CASE("The gas block's room is held to the pile's limit, at gas.spacing or "
+          "gas.wall_thickness",
+          "[pile-input]") {
+    // Four bodies on a 2 x 2 lattice: the room reaches spacing + wall_thickness
+    // from the origin (docs/formats.md, the gas block's step 2). Spacing 1e200
+    // ran into NaN positions and wrote a partial trajectory over --out.
+    const std::string gas = R"({
+  "schema": "impulse/scene@1",
+  "name": "drop-box",
+  "gravity": [0, 0],
+  "dt": 0.01,
+  "duration": 0.05,
+  "gas": {"count": 4, "shape": {"circle": 0.1}, "mass": 1, "spacing": 0.5, "max_speed": 1}
+}
+)";
+    const std::vector<BadFile> cases = {
+        bad_text("gas spacing 1e200", replace_once(gas, R"("spacing": 0.5)", R"("spacing": 1e200)"),
+                 "gas.spacing", "gives a room reaching 1e+200 m from the origin"),
+        bad_text(
+            "gas walls 1e17 thick",
+            replace_once(gas, R"("max_speed": 1)", R"("max_speed": 1, "wall_thickness": 1e17)"),
+            "gas.wall_thickness", "gives a room reaching 1e+17 m from the origin"),
+    };
+    for (const BadFile& bad : cases) {
+        require_scene_refused(bad);
+    }
+}
+
 TEST_CASE("A pile beside listed bodies or another block is exit 2 naming the pile",
           "[pile-input]") {
     const auto with_bodies = [](const std::string& bodies) {

@@ -69,33 +69,15 @@ void check_spacing(const Node& node, const PileSpec& pile) {
     }
 }
 
-// 2^48: a double holds a coordinate x to within x 2^-52, so within this many
-// contact tolerances of the origin every position is held to 1/16 of the
-// tolerance or better.
-constexpr double contact_tolerances_across = 281474976710656.0;
-
-// The box, walls included, only where positions resolve the contact
-// tolerance. Further out, touching is decided by rounding: at 1e17 m of
-// wall a wall's face moves by metres, and a box 1e154 m wide squares to
-// infinity in the narrow phase, so the run stops with NaN positions after
-// writing a partial trajectory. Refused here, before anything runs.
+// The box within reach of the contact tolerance (resolvable_extent.cpp),
+// blamed on the walls when the lattice alone is within it.
 void check_extent(const Node& node, const PileSpec& pile, double contact_tolerance) {
-    const double limit = contact_tolerances_across * contact_tolerance;
-    const double extent = pile_extent(pile);
-    if (extent <= limit) {
-        return;
-    }
-    // The lattice alone within the limit: the walls are what is too thick.
-    const bool lattice = !(pile_lattice_extent(pile) <= limit);
-    const std::string cure = lattice ? "use a smaller spacing or count (or more columns for a "
-                                       "tall pile), or a larger solver.contact_tolerance"
-                                     : "use thinner walls or a larger solver.contact_tolerance";
-    node.member(lattice ? "spacing" : "wall_thickness")
-        .fail("gives a box reaching " + number_text(extent) +
-              " m from the origin, walls included, but positions resolve the contact "
-              "tolerance only within " +
-              number_text(limit) + " m of it (2^48 times solver.contact_tolerance " +
-              number_text(contact_tolerance) + " m: a double holds x to within x 2^-52); " + cure);
+    const bool lattice = !(pile_lattice_extent(pile) <= resolvable_extent(contact_tolerance));
+    refuse_unresolvable_extent(
+        node, lattice ? "spacing" : "wall_thickness", "a box", pile_extent(pile), contact_tolerance,
+        lattice ? "use a smaller spacing or count (or more columns for a tall pile), or a larger "
+                  "solver.contact_tolerance"
+                : "use thinner walls or a larger solver.contact_tolerance");
 }
 
 // What is wrong with a body's mass or moment of inertia: both must be finite
