@@ -1,5 +1,7 @@
 #include "generated_bodies.h"
 
+#include "strict_json.h"
+
 #include <algorithm>
 
 namespace impulse::harness {
@@ -32,6 +34,23 @@ bool is_generated_name(const std::string& name, std::initializer_list<const char
         return false;
     }
     return std::stol(digits) < count;
+}
+
+// A scene has at most one block (the loader refuses both), so the block is
+// known from the scene alone.
+std::string body_path(const Scene& scene, std::size_t index) {
+    if (index < scene.listed_bodies) {
+        return json_element_path("bodies", index);
+    }
+    return scene.pile ? "pile" : "gas";
+}
+
+std::string body_reference(const Scene& scene, std::size_t index) {
+    const std::string name = "'" + scene.bodies[index].name + "'";
+    if (index < scene.listed_bodies) {
+        return "bodies[" + std::to_string(index) + "] " + name;
+    }
+    return name + (scene.pile ? " of the pile block" : " of the gas block");
 }
 
 } // namespace impulse::harness

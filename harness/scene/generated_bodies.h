@@ -4,6 +4,7 @@
 
 #include "scene.h"
 
+#include <cstddef>
 #include <initializer_list>
 #include <string>
 
@@ -16,5 +17,13 @@ SceneBody static_wall(const std::string& name, Vec2 position, double hx, double 
 // leading zeros) and the given walls gives a body this name.
 bool is_generated_name(const std::string& name, std::initializer_list<const char*> walls,
                        const std::string& prefix, int count);
+
+// The JSON path a problem with scene body `index` is reported at: its entry in
+// "bodies", or the block that made it ("gas" or "pile"), which the file holds
+// instead of the body.
+std::string body_path(const Scene& scene, std::size_t index);
+// How a message names that body: "bodies[3] 'ball'", or "'pile-7' of the pile
+// block".
+std::string body_reference(const Scene& scene, std::size_t index);
 
 } // namespace impulse::harness

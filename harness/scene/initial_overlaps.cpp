@@ -1,6 +1,7 @@
 // A physical precondition of every scene: no two bodies interpenetrate at
 // t = 0 (touching is fine).
 #include "body.h"
+#include "generated_bodies.h"
 #include "manifold.h"
 #include "scene_reading.h"
 
@@ -46,18 +47,6 @@ Extent extent_of(const SceneBody& body, const Transform& xf) {
     const double slack =
         1e-9 * (std::max(e.hi_x - e.lo_x, e.hi_y - e.lo_y) + std::abs(xf.p.x) + std::abs(xf.p.y));
     return {e.lo_x - slack, e.hi_x + slack, e.lo_y - slack, e.hi_y + slack};
-}
-
-// The JSON path a problem with scene body `index` is reported at: its entry in
-// "bodies", or the gas block that made it.
-std::string body_path(const Scene& scene, std::size_t index) {
-    return index < scene.listed_bodies ? json_element_path("bodies", index) : std::string("gas");
-}
-
-std::string body_reference(const Scene& scene, std::size_t index) {
-    const std::string name = "'" + scene.bodies[index].name + "'";
-    return index < scene.listed_bodies ? "bodies[" + std::to_string(index) + "] " + name
-                                       : name + " of the gas block";
 }
 
 } // namespace

@@ -7,6 +7,7 @@
 #include "gas.h"
 #include "generated_bodies.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -43,6 +44,28 @@ double pile_largest_diameter(const PileSpec& spec) {
     return spec.kinds == PileSpec::Kinds::circle ? circle : circle * sqrt2;
 }
 
+double pile_lattice_extent(const PileSpec& spec) {
+    const double width = static_cast<double>(pile_columns(spec)) * spec.spacing;
+    const double height = static_cast<double>(pile_rows(spec)) * spec.spacing;
+    return std::max(width / 2.0, 2.0 * height);
+}
+
+double pile_extent(const PileSpec& spec) {
+    const double width = static_cast<double>(pile_columns(spec)) * spec.spacing;
+    const double height = static_cast<double>(pile_rows(spec)) * spec.spacing;
+    return std::max(width / 2.0 + spec.wall_thickness, 2.0 * height);
+}
+
+SceneBody pile_body(bool circle, double size, double density) {
+    SceneBody body;
+    body.shape = circle ? make_circle(size) : make_box(size, size);
+    const MassProperties properties = mass_properties(body.shape);
+    body.mass = density * properties.area;
+    body.inertia = body.mass * properties.inertia_per_unit_mass;
+    body.rotation = true;
+    return body;
+}
+
 std::vector<SceneBody> generate_pile(const PileSpec& spec) {
     const int k = pile_columns(spec);
     const double width = static_cast<double>(k) * spec.spacing; // W, the box's inner width
@@ -68,13 +91,8 @@ std::vector<SceneBody> generate_pile(const PileSpec& spec) {
         }
         const double size = between(spec.size_min, spec.size_max, random.unit());
         const double density = between(spec.density_min, spec.density_max, random.unit());
-        SceneBody body;
+        SceneBody body = pile_body(circle, size, density);
         body.name = "pile-" + std::to_string(n);
-        body.shape = circle ? make_circle(size) : make_box(size, size);
-        const MassProperties properties = mass_properties(body.shape);
-        body.mass = density * properties.area;
-        body.inertia = body.mass * properties.inertia_per_unit_mass;
-        body.rotation = true;
         // Row by row from the bottom left, column i fastest; row 0's sites are
         // half a spacing above the floor.
         const int i = n % k;

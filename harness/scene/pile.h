@@ -23,6 +23,16 @@ int pile_rows(const PileSpec& spec);
 // diagonal). Sites further apart than this never overlap at any angle.
 double pile_largest_diameter(const PileSpec& spec);
 
+// How far from the origin the box reaches: the inner half width W / 2 and
+// the walls' height 2 H (the lattice), and with the walls, max(W / 2 +
+// wall_thickness, 2 H). Computed as generate_pile computes the walls.
+double pile_lattice_extent(const PileSpec& spec);
+double pile_extent(const PileSpec& spec);
+
+// One body of the block at the origin, at rest: a circle of radius `size` or
+// a square of half side `size`, mass = density x area, inertia from the shape.
+SceneBody pile_body(bool circle, double size, double density);
+
 // The bodies the block stands for: floor, wall-left, wall-right, then
 // pile-0 ... pile-(count - 1). The caller has validated the spec.
 std::vector<SceneBody> generate_pile(const PileSpec& spec);

@@ -107,6 +107,14 @@ void read_gas(const Node& node, Scene& scene) {
             .fail("gives a room " + number_text(side + 2.0 * gas.wall_thickness) +
                   " m wide with its walls; it must be finite");
     }
+    // The room reaches side / 2 + wall_thickness from the origin (its walls,
+    // docs/formats.md, the gas block's step 2).
+    const bool lattice = !(side / 2.0 <= resolvable_extent(scene.solver.contact_tolerance));
+    refuse_unresolvable_extent(
+        node, lattice ? "spacing" : "wall_thickness", "a room", side / 2.0 + gas.wall_thickness,
+        scene.solver.contact_tolerance,
+        lattice ? "use a smaller spacing or count, or a larger solver.contact_tolerance"
+                : "use thinner walls or a larger solver.contact_tolerance");
     for (std::size_t i = 0; i < scene.listed_bodies; ++i) {
         if (is_generated_name(scene.bodies[i].name,
                               {"wall-bottom", "wall-top", "wall-left", "wall-right"}, "gas-",

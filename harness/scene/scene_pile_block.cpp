@@ -57,24 +57,70 @@ std::pair<double, double> read_range(const Node& node, const std::string& unit) 
     return {lo, hi};
 }
 
-// The lattice's width and height with the walls, finite; the spacing wide
-// enough that no two bodies can overlap at any angle.
-void check_geometry(const Node& node, const PileSpec& pile) {
-    const Node spacing = node.member("spacing");
+// The spacing wide enough that no two bodies can overlap at any angle.
+void check_spacing(const Node& node, const PileSpec& pile) {
     const double diameter = pile_largest_diameter(pile);
     if (!(pile.spacing > diameter)) {
-        spacing.fail("must be more than the largest body's bounding diameter " +
-                     number_text(diameter) +
-                     " m (twice size[1], times sqrt(2) when boxes are drawn), so that no two "
-                     "bodies overlap at any angle, got " +
-                     number_text(pile.spacing));
+        node.member("spacing").fail(
+            "must be more than the largest body's bounding diameter " + number_text(diameter) +
+            " m (twice size[1], times sqrt(2) when boxes are drawn), so that no two bodies "
+            "overlap at any angle, got " +
+            number_text(pile.spacing));
     }
-    const double width = static_cast<double>(pile_columns(pile)) * pile.spacing;
-    const double height = static_cast<double>(pile_rows(pile)) * pile.spacing;
-    if (!std::isfinite(width + 2.0 * pile.wall_thickness) ||
-        !std::isfinite(2.0 * height + pile.wall_thickness)) {
-        spacing.fail("gives a box " + number_text(width) + " m wide and " +
-                     number_text(2.0 * height) + " m tall; it must be finite");
+}
+
+// The box within reach of the contact tolerance (resolvable_extent.cpp),
+// blamed on the walls when the lattice alone is within it.
+void check_extent(const Node& node, const PileSpec& pile, double contact_tolerance) {
+    const bool lattice = !(pile_lattice_extent(pile) <= resolvable_extent(contact_tolerance));
+    refuse_unresolvable_extent(
+        node, lattice ? "spacing" : "wall_thickness", "a box", pile_extent(pile), contact_tolerance,
+        lattice ? "use a smaller spacing or count (or more columns for a tall pile), or a larger "
+                  "solver.contact_tolerance"
+                : "use thinner walls or a larger solver.contact_tolerance");
+}
+
+// What is wrong with a body's mass or moment of inertia: both must be finite
+// and > 0.
+std::optional<std::string> mass_problem(const SceneBody& body) {
+    if (!(body.mass > 0.0 && std::isfinite(body.mass))) {
+        return "a mass of " + number_text(body.mass) + " kg";
+    }
+    if (!(body.inertia > 0.0 && std::isfinite(body.inertia))) {
+        return "a moment of inertia of " + number_text(body.inertia) + " kg m^2";
+    }
+    return std::nullopt;
+}
+
+// Mass and inertia grow with size and with density, so the lightest body the
+// block can draw is (size[0], density[0]) and the heaviest (size[1],
+// density[1]), of each kind it draws: when those are finite and > 0, every
+// body is. The key blamed is the size when a body that size fails even at
+// 1 kg/m^2 (its area or inertia per unit mass underflows or overflows), else
+// the density.
+void check_masses(const Node& node, const PileSpec& pile) {
+    const auto check = [&](bool circle, std::size_t end, double size, double density) {
+        const std::optional<std::string> problem = mass_problem(pile_body(circle, size, density));
+        if (!problem) {
+            return;
+        }
+        const bool shape = mass_problem(pile_body(circle, size, 1.0)).has_value();
+        const std::string kind = circle ? "circle" : "square";
+        const std::string which = end == 0 ? "lightest" : "heaviest";
+        node.member(shape ? "size" : "density")
+            .element(end)
+            .fail("gives the " + which + " " + kind + " the block can draw (size " +
+                  number_text(size) + " m, density " + number_text(density) + " kg/m^2) " +
+                  *problem + "; a body's mass and moment of inertia must be finite and > 0, so " +
+                  (end == 0 ? "a larger" : "a smaller") + " value is needed");
+    };
+    for (const bool circle : {true, false}) {
+        const bool drawn = pile.kinds == PileSpec::Kinds::mixed ||
+                           (pile.kinds == PileSpec::Kinds::circle) == circle;
+        if (drawn) {
+            check(circle, 0, pile.size_min, pile.density_min);
+            check(circle, 1, pile.size_max, pile.density_max);
+        }
     }
 }
 
@@ -126,7 +172,9 @@ void read_pile(const Node& node, Scene& scene) {
         pile.seed = static_cast<std::uint64_t>(read_whole(*seed, 0, max_pile_seed));
     }
     pile.wall_thickness = read_positive_or(node, "wall_thickness", pile.wall_thickness);
-    check_geometry(node, pile);
+    check_spacing(node, pile);
+    check_extent(node, pile, scene.solver.contact_tolerance);
+    check_masses(node, pile);
     for (std::size_t i = 0; i < scene.listed_bodies; ++i) {
         if (is_generated_name(scene.bodies[i].name, {"floor", "wall-left", "wall-right"}, "pile-",
                               pile.count)) {
@@ -138,15 +186,6 @@ void read_pile(const Node& node, Scene& scene) {
         }
     }
     std::vector<SceneBody> made = generate_pile(pile);
-    // A body's mass from a tiny size and density could underflow to 0.
-    for (const SceneBody& body : made) {
-        if (!body.is_static && !(body.mass > 0.0 && body.inertia > 0.0 &&
-                                 std::isfinite(body.mass) && std::isfinite(body.inertia))) {
-            node.fail("gives '" + body.name + "' a mass of " + number_text(body.mass) +
-                      " kg and a moment of inertia of " + number_text(body.inertia) +
-                      " kg m^2; both must be finite and > 0 (change size or density)");
-        }
-    }
     reject_listed_overlaps(node, scene, made);
     scene.bodies.insert(scene.bodies.end(), std::make_move_iterator(made.begin()),
                         std::make_move_iterator(made.end()));

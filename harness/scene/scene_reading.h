@@ -1,5 +1,6 @@
 // What the section readers of a scene file share (scene_top_level.cpp,
-// scene_shapes.cpp, scene_bodies.cpp, scene_gas_block.cpp,
+// scene_shapes.cpp, scene_bodies.cpp, scene_gas_block.cpp, scene_pile_block.cpp,
+// resolvable_extent.cpp,
 // initial_overlaps.cpp, scene_expectations.cpp, scene_box2d_block.cpp):
 // a value with its JSON path, and the typed reads on it. Private to the scene
 // loader; scene.h is the public header.
@@ -137,6 +138,14 @@ std::size_t read_dynamic_body_reference(const Node& node, const Scene& scene,
 
 // scene_gas_block.cpp: the "gas" block, its bodies appended to the listed ones.
 void read_gas(const Node& node, Scene& scene);
+
+// resolvable_extent.cpp: a generated block's box reaches at most
+// resolvable_extent(contact_tolerance) from the origin (2^48 tolerances);
+// refuse_unresolvable_extent fails at the block's `key` ("gives BOX reaching
+// ...; CURE") when `extent` is beyond it.
+double resolvable_extent(double contact_tolerance);
+void refuse_unresolvable_extent(const Node& block, const std::string& key, const std::string& box,
+                                double extent, double contact_tolerance, const std::string& cure);
 
 // initial_overlaps.cpp: refuses bodies interpenetrating at t = 0.
 void reject_initial_overlaps(const Scene& scene);

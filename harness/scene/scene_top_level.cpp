@@ -171,6 +171,17 @@ void read_solver(const Node& node, SolverSettings& solver) {
     // depends on the contact method.
     solver.resting = read_bool_or(node, "resting", solver.resting);
     read_resting_method(node, solver);
+    // Time-stepping solves every touching point of an island together in each
+    // step, whatever "contacts" says (the same bits either way), so a request
+    // for another contact model there would do nothing; refused, not ignored.
+    if (solver.contacts != ContactMode::single && solver.resting &&
+        solver.resting_method == RestingMethod::time_stepping) {
+        optional_member(node, "contacts")
+            ->fail("is not used with \"resting_method\": \"time-stepping\", which solves every "
+                   "touching point of an island together in each step; remove \"contacts\", or "
+                   "use \"resting_method\": \"auto\" or \"events\" for the event model it "
+                   "chooses");
+    }
     solver.ccd = read_bool_or(node, "ccd", solver.ccd);
     if (solver.ccd) {
         const Node ccd = *optional_member(node, "ccd");

@@ -1,5 +1,6 @@
 #include "tunnelling.h"
 
+#include "generated_bodies.h"
 #include "input_error.h"
 #include "text.h"
 
@@ -20,11 +21,6 @@ std::string short_number(double value) {
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "%.4g", value);
     return buffer;
-}
-
-std::string body_path(const Scene& scene, std::size_t index) {
-    return index < scene.listed_bodies ? "bodies[" + std::to_string(index) + "]"
-                                       : std::string("gas");
 }
 
 // How far a body's surface can move by turning alone, per rad/s: its farthest
@@ -141,6 +137,16 @@ TunnellingRefusal refusal(const Scene& scene, std::size_t fast, std::size_t slow
                           const std::vector<Reach>& reach, double closing, double thickness) {
     const SceneBody& a = scene.bodies[fast];
     const SceneBody& b = scene.bodies[slow];
+    // A speed bound that overflows (gravity or a velocity beyond 1e154, whose
+    // length squares to infinity) has no safe dt to offer: say so, rather
+    // than quote "inf m/s" and "dt below 0 s".
+    if (!std::isfinite(closing)) {
+        return TunnellingRefusal{body_path(scene, fast),
+                                 single_quoted(a.name) + " and " + single_quoted(b.name) +
+                                     " could close at a speed that overflows double precision "
+                                     "(the scene's gravity, velocities or angular velocities are "
+                                     "too large to simulate); scale them down"};
+    }
     const double safe_dt = thickness / closing;
     const double gain = reach[fast].gain + reach[slow].gain;
     const std::string gravity = gain > 0.0 ? " (" + short_number(closing - gain) +

@@ -25,7 +25,7 @@ namespace impulse::harness {
 // collisions pass from one dynamic body to another is not bounded (a light
 // body struck by a heavy one); ccd is the cure for those.
 struct TunnellingRefusal {
-    std::string path;    // "bodies[1]" (or "gas") of the faster body of the pair
+    std::string path;    // "bodies[1]" (or "gas", "pile") of the faster body of the pair
     std::string message; // one sentence naming both bodies, the speeds, the safe dt and the cure
 };
 
