@@ -124,7 +124,7 @@ TEST_CASE("A pile whose energies overflow is exit 2 at pile.density[1] or gravit
     require_runs(pile_value("density", "[1, 1e280]"));
 }
 
-TEST_CASE("A listed body whose weight overflows is exit 2 at its mass or density",
+TEST_CASE("A listed or gas body whose weight overflows is exit 2 at its mass or density",
           "[extreme-input]") {
     const std::vector<BadFile> cases = {
         // 1e308 kg x 9.81 m/s^2 is inf: this ran into NaN and wrote a partial
@@ -138,6 +138,11 @@ TEST_CASE("A listed body whose weight overflows is exit 2 at its mass or density
                  ball_edit(R"("shape": {"circle": 0.25}, "mass": 1)",
                            R"("shape": {"box": [1, 1]}, "density": 2e307)"),
                  "bodies[1].density", "use a smaller density or gravity"),
+        // The gas block's bodies fall under the default gravity too.
+        bad_text("gas mass 1e308", R"({"schema": "impulse/scene@1", "name": "drop-box",
+  "dt": 0.01, "duration": 0.05,
+  "gas": {"count": 4, "shape": {"circle": 0.1}, "mass": 1e308, "spacing": 0.5, "max_speed": 1}})",
+                 "gas.mass", "gives each gas body a mass of 1e+308 kg, whose weight m |g|"),
     };
     for (const BadFile& bad : cases) {
         require_scene_refused(bad);
