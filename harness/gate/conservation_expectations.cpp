@@ -2,6 +2,7 @@
 // conserved in free space, and energy that never increases with e < 1.
 #include "expectation_checks.h"
 
+#include <cmath>
 #include <limits>
 
 namespace impulse::harness {
@@ -96,8 +97,26 @@ void check_energy_non_increasing(const Scene& scene, const Trajectory& trajector
     // E(k) <= E(k-1) + atol + rtol * scale: one-sided, a fall is always fine.
     const Expectation& x = checks.expectation();
     const double allowed = x.atol + x.rtol * initial.energy_scale;
-    checks.judged("energy non-increasing, largest rise at t = " + sentence_number(t) + " s",
-                  after <= before + allowed, before, after,
+    const std::string what =
+        "energy non-increasing, largest rise at t = " + sentence_number(t) + " s";
+    // An energy of inf or NaN did not "rise by NaN J": say what it is.
+    if (!std::isfinite(before) || !std::isfinite(after) || !std::isfinite(allowed)) {
+        const bool energy_finite = std::isfinite(before) && std::isfinite(after);
+        checks.judged(
+            what, false, before, after,
+            (energy_finite
+                 ? "the allowance atol + rtol x " + sentence_number(initial.energy_scale) +
+                       " J is " + sentence_number(allowed)
+                 : "the energy is " + sentence_number(after) + " J at t = " + sentence_number(t) +
+                       " s (" + sentence_number(before) + " J a frame before)") +
+                ", beyond double precision: the scene's masses, speeds, heights or "
+                "gravity are too large for m v^2 / 2 + I w^2 / 2 - m g . x (or its "
+                "tolerance) to be summed, so whether it rose cannot be judged; scale "
+                "them down",
+            allowed);
+        return;
+    }
+    checks.judged(what, after <= before + allowed, before, after,
                   "the energy rose by " + sentence_number(after - before) +
                       " J in the step to t = " + sentence_number(t) + " s, more than the " +
                       sentence_number(allowed) + " allowed (atol " + sentence_number(x.atol) +

@@ -35,6 +35,7 @@ class Checks {
         r.expected = finite_or_zero(expected.value);
         r.actual = finite_or_zero(actual);
         r.allowed = allowed;
+        r.numeric = std::isfinite(expected.value) && std::isfinite(actual);
         if (!std::isfinite(expected.value)) {
             r.passed = false;
             r.detail = "the exact formula gives " + sentence_number(expected.value) +
@@ -72,6 +73,7 @@ class Checks {
         r.expected = finite_or_zero(expected);
         r.actual = finite_or_zero(actual);
         r.allowed = allowed;
+        r.numeric = std::isfinite(expected) && std::isfinite(actual);
         if (!finite) {
             r.detail = "not finite: expected " + sentence_number(expected) + ", got " +
                        sentence_number(actual) + ", allowed " + sentence_number(allowed) + "; " +

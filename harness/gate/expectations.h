@@ -16,6 +16,10 @@ struct ExpectationResult {
     bool passed = true;
     double expected = 0.0;
     double actual = 0.0;
+    // false when expected or actual was not finite: they hold 0 then, and a
+    // message shows the detail alone rather than "expected 0, got 0" beside
+    // the inf it is about.
+    bool numeric = true;
     // The allowance |actual - expected| was judged against (atol + rtol x
     // scale; one-sided for energy-non-increasing), for a scorecard that shows
     // it; empty for a name compared as a string and for a check that failed

@@ -108,10 +108,12 @@ std::string failed_expectations(const std::vector<ExpectationResult>& results, i
     for (const ExpectationResult& r : results) {
         if (!r.passed) {
             ++count;
-            out << "  " << r.path << " " << r.what << ": expected " << format_double(r.expected)
-                << ", got " << format_double(r.actual);
-            if (!r.detail.empty()) {
-                out << " (" << r.detail << ")";
+            out << "  " << r.path << " " << r.what << ": ";
+            if (r.numeric) {
+                out << "expected " << format_double(r.expected) << ", got "
+                    << format_double(r.actual) << (r.detail.empty() ? "" : " (" + r.detail + ")");
+            } else {
+                out << r.detail;
             }
             out << "\n";
         }

@@ -130,9 +130,11 @@ void expectations_list(std::string& out, const SceneCheck& check) {
     out += "<ul class=\"expectations\">\n";
     for (const ExpectationResult& e : check.expectations) {
         out += std::string("<li class=\"") + (e.passed ? "pass" : "fail") + "\">" +
-               (e.passed ? "&#10003; " : "&#10007; ") + xml_escape(e.what) + ": expected " +
-               xml_escape(sentence_number(e.expected)) + ", got " +
-               xml_escape(sentence_number(e.actual));
+               (e.passed ? "&#10003; " : "&#10007; ") + xml_escape(e.what);
+        if (e.numeric) {
+            out += ": expected " + xml_escape(sentence_number(e.expected)) + ", got " +
+                   xml_escape(sentence_number(e.actual));
+        }
         if (!e.detail.empty()) {
             out += " &#8212; " + xml_escape(e.detail);
         }

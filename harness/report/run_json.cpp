@@ -32,6 +32,9 @@ Json expectation_json(const ExpectationResult& r) {
 } // namespace
 
 std::string expectation_message(const ExpectationResult& r) {
+    if (!r.numeric) {
+        return r.path + ": " + r.what + ": " + r.detail; // no "expected 0, got 0" beside an inf
+    }
     return r.path + ": " + r.what + ": expected " + format_double(r.expected) + ", got " +
            format_double(r.actual) + (r.detail.empty() ? "" : " (" + r.detail + ")");
 }

@@ -3,6 +3,7 @@
 #include "rotation.h"
 #include "scene_pile_block.h"
 #include "scene_reading.h"
+#include "text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -136,6 +137,7 @@ SceneBody read_body(const Node& node, Scene& scene, NameIndex& names) {
     recentre_polygon(body, shape.path(), scene.file, scene.warnings);
     if (!body.is_static) {
         resolve_mass(node, mass, body);
+        refuse_infinite_weight(node, single_quoted(body.name), body.mass, scene.gravity);
     }
     return body;
 }
@@ -159,6 +161,27 @@ void read_listed_bodies(const Node& node, Scene& scene, bool has_gas, NameIndex&
 }
 
 } // namespace
+
+// A mass whose weight m |g| overflows (1e308 kg under 9.81 m/s^2) turns the
+// first contact force or potential energy into inf and the run into NaN,
+// after a partial trajectory has been written over --out: refused here, at
+// the key that gave the mass (a listed body's, or the gas block's). Finite
+// weights run (1e307 kg does); a bound with room to spare would refuse the
+// 1e300 kg bodies whose energies the gate reports as not finite
+// (docs/refusals-and-progress.md).
+void refuse_infinite_weight(const Node& node, const std::string& who, double mass, Vec2 gravity) {
+    // hypot, not length: |g| beyond 1e154 would square to inf.
+    const double weight = mass * std::hypot(gravity.x, gravity.y);
+    if (std::isfinite(weight)) {
+        return;
+    }
+    const std::string key = node.has("mass") ? "mass" : "density";
+    const Node given = node.has(key) ? node.member(key) : node;
+    given.fail("gives " + who + " a mass of " + number_text(mass) +
+               " kg, whose weight m |g| under the scene's gravity overflows double precision; "
+               "use a smaller " +
+               (node.has(key) ? key : "shape") + " or gravity");
+}
 
 // "bodies", "gas" and "pile": the listed bodies, then the gas block's or the
 // pile block's.

@@ -78,6 +78,7 @@ void read_gas(const Node& node, Scene& scene) {
             "vertices recentred; each gas body's centroid sits on its lattice site"));
     }
     read_gas_mass(node, gas);
+    refuse_infinite_weight(node, "each gas body", gas.mass, scene.gravity);
     const Node spacing = required_member(node, "spacing");
     gas.spacing = read_positive(spacing);
     // Closer sites could let two bodies overlap at some angles; the room is

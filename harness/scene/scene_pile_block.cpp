@@ -23,6 +23,8 @@ namespace {
 // The gas block's bounds (scene_gas_block.cpp says why).
 constexpr long long max_pile_count = 100000;
 constexpr long long max_pile_seed = 9007199254740992;
+// 2^960: 2^-64 of the largest double (check_energy says why).
+constexpr double energy_limit = 0x1p960;
 
 const std::vector<std::string> pile_keys = {"count",         "shape",   "size",
                                             "density",       "spacing", "columns",
@@ -124,6 +126,49 @@ void check_masses(const Node& node, const PileSpec& pile) {
     }
 }
 
+// The energies the gate sums over a pile (energy-non-increasing, at-rest:
+// sum m v^2 / 2 + I w^2 / 2 - m g . x) stay finite with room to spare. The
+// bodies start at rest, and every position the box allows lies within its
+// extent L of the origin; no collision adds energy, so each body's energy
+// stays within m |g| L of its start and every sum within count m_max |g| L
+// (m_max the heaviest body the block can draw). That must be at most 2^-64 of
+// the largest double: rtol x scale and the sums over frames then stay finite
+// for any rtol up to 2^60. Density 1e306 passed the mass check and every
+// energy was inf (the gate then failed with "expected 0, got 0"). Blamed on
+// density[1] unless the pile is too heavy even at 1 kg/m^2: then gravity.
+void check_energy(const Node& node, const PileSpec& pile, Vec2 gravity) {
+    // hypot, not length: |g| beyond 1e154 would square to inf.
+    const double g = std::hypot(gravity.x, gravity.y);
+    const auto bound = [&](double density) {
+        double heaviest = 0.0;
+        for (const bool circle : {true, false}) {
+            const bool drawn = pile.kinds == PileSpec::Kinds::mixed ||
+                               (pile.kinds == PileSpec::Kinds::circle) == circle;
+            if (drawn) {
+                heaviest = std::max(heaviest, pile_body(circle, pile.size_max, density).mass);
+            }
+        }
+        return static_cast<double>(pile.count) * heaviest * g * pile_extent(pile);
+    };
+    const double energy = bound(pile.density_max);
+    if (energy <= energy_limit) {
+        return;
+    }
+    const bool density = bound(1.0) <= energy_limit;
+    const std::string sentence =
+        "gives the pile an energy scale of " + number_text(energy) +
+        " J (count x the heaviest body's mass x |g| x the box's reach " +
+        number_text(pile_extent(pile)) +
+        " m: what its fall can release), but the energies the gate sums must stay within "
+        "2^-64 of the largest double, " +
+        number_text(energy_limit) + " J, so that they and rtol times them are finite; " +
+        (density ? "use a smaller density[1]" : "use a smaller gravity");
+    if (density) {
+        node.member("density").element(1).fail(sentence);
+    }
+    json_fields::fail("gravity", sentence);
+}
+
 // A listed body in the pile's way. The loader's overlap check would name it
 // at "gas", the gas block's path; here the sentence names the pile. Listed
 // bodies are few, so every pair with one is tested: O(listed x count).
@@ -175,6 +220,7 @@ void read_pile(const Node& node, Scene& scene) {
     check_spacing(node, pile);
     check_extent(node, pile, scene.solver.contact_tolerance);
     check_masses(node, pile);
+    check_energy(node, pile, scene.gravity);
     for (std::size_t i = 0; i < scene.listed_bodies; ++i) {
         if (is_generated_name(scene.bodies[i].name, {"floor", "wall-left", "wall-right"}, "pile-",
                               pile.count)) {

@@ -136,6 +136,11 @@ std::size_t read_body_reference(const Node& node, const Scene& scene);
 std::size_t read_dynamic_body_reference(const Node& node, const Scene& scene,
                                         const std::string& needs);
 
+// Refuses a mass whose weight m |g| overflows double precision, at `node`'s
+// "mass" or "density" (or `node` when it gives neither); `who` names the body
+// in the sentence ("'ball'", "each gas body").
+void refuse_infinite_weight(const Node& node, const std::string& who, double mass, Vec2 gravity);
+
 // scene_gas_block.cpp: the "gas" block, its bodies appended to the listed ones.
 void read_gas(const Node& node, Scene& scene);
 

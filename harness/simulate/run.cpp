@@ -1,9 +1,11 @@
 #include "run.h"
 
+#include "contact_band.h"
 #include "input_error.h"
 #include "number_format.h"
 #include "record.h"
 #include "simulator.h"
+#include "step_fall.h"
 #include "tunnelling.h"
 
 namespace impulse::harness {
@@ -48,6 +50,10 @@ std::string overrides_list(const Overrides& overrides) {
 Trajectory run_scene(const Scene& scene, const Overrides& overrides) {
     const Scene effective = with_overrides(scene, overrides);
     refuse_tunnelling(effective); // a tunnel would pass unseen: refused, not run
+    // Scales the engine cannot resolve: a contact band as wide as a body, and
+    // (time-stepping) a per-step fall beyond the contact tolerance's reach.
+    refuse_contact_band_beyond_bodies(effective);
+    refuse_unresolvable_step_fall(effective);
     std::unique_ptr<Simulator> simulator = make_impulse_simulator(effective);
     Trajectory trajectory = record(*simulator, effective);
     const std::string used = overrides_list(overrides);
