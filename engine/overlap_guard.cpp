@@ -88,7 +88,8 @@ void separate_group(World& world, double h, TimeSteppingScratch& s, int g, doubl
         }
     }
     problem.lambda.assign(problem.points.size(), 0.0);
-    if (problem.points.empty() || !solve_island(world, problem, d / h).solved) {
+    if (problem.points.empty() || !solve_island(world, problem, d / h).solved ||
+        !impulses_finite(problem)) {
         ++world.work.overlap_guard_unsolved;
         return; // the overlap stays, and max-overlap judges it
     }

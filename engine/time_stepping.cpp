@@ -302,7 +302,7 @@ bool TimeStep::impacts(int first, int last, bool& pushed) {
         p.q.push_back((1.0 + e) * point.vn);
     }
     p.lambda.assign(p.points.size(), 0.0);
-    if (!solve_island(world_, p, d_ / h_).solved) {
+    if (!solve_island(world_, p, d_ / h_).solved || !impulses_finite(p)) {
         return false;
     }
     apply_impulses(world_, p);
@@ -349,7 +349,7 @@ bool TimeStep::hold(int first, int last, bool& pushed) {
         p.q.push_back(u + (gap > 0.0 ? gap : 0.0) / h_);
         p.lambda.push_back(s_.warm[static_cast<std::size_t>(r)]);
     }
-    if (!solve_island(world_, p, tolerance).solved) {
+    if (!solve_island(world_, p, tolerance).solved || !impulses_finite(p)) {
         return false;
     }
     apply_impulses(world_, p);

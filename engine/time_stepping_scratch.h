@@ -9,6 +9,7 @@
 #include "mprgp.h"
 #include "pgs.h"
 
+#include <cmath>
 #include <vector>
 
 namespace impulse {
@@ -38,6 +39,21 @@ struct IslandProblem {
     PgsScratch pgs;
     MprgpScratch mprgp;
 };
+
+// false when some impulse of a solved problem is not finite. A problem with
+// no solution (the overlap guard's, translation only, for a body wedged
+// between two static bodies closer than its thickness: w_1 + w_2 = (g_1 +
+// g_2) / h < 0 for every impulse) sends the iterative solver's impulses to
+// infinity, and infinity times a static body's zero inverse mass is NaN: such
+// an answer is no solution and is never applied.
+inline bool impulses_finite(const IslandProblem& problem) {
+    for (const double l : problem.lambda) {
+        if (!std::isfinite(l)) {
+            return false;
+        }
+    }
+    return true;
+}
 
 struct TimeSteppingScratch {
     std::vector<BodyState> start;    // x_k, v_k of every body
