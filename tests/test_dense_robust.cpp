@@ -68,3 +68,37 @@ TEST_CASE("the overlap guard leaves a body that cannot fit where it is, finite, 
     CHECK(world.bodies[2].state.position.y == y);
     CHECK(world.work.overlap_guard_unsolved >= 1);
 }
+
+TEST_CASE("the overlap guard turns a slab free when no translation can separate it",
+          "[dense-robust]") {
+    // A 1 m slab 3 mm into a peg under its left end, with a peg 1 mm above its
+    // right end: the normals are opposite, so no translation separates it
+    // (as above), but turning it clockwise lifts the left end and lowers
+    // the right: about 3 mm / 0.4 m = 7.5e-3 rad. Found in a random
+    // pile: a box wedged between two pegs stayed 4.8 mm deep until this.
+    const double into = 3e-3;
+    const double above = 1e-3;
+    World world = make_world({static_body(make_box(0.05, 0.05), {-0.4, -0.1 + into}),
+                              static_body(make_box(0.05, 0.05), {0.4, 0.1 + above}),
+                              dynamic_body(make_box(0.5, 0.05), 1.0, {0.0, 0.0})},
+                             {0.0, -9.81}, 0.5, time_stepping());
+    TimeSteppingScratch s;
+    for (const Body& b : world.bodies) {
+        s.start.push_back(b.state);
+        s.poses.push_back(transform_of(b.state));
+    }
+    s.reach.assign(3, 0.0);
+    s.pairs = {{0, 2, world.solver.contact_tolerance}, {1, 2, world.solver.contact_tolerance}};
+    guard_overlaps(world, h, s);
+    const auto gap_of = [&world](std::size_t i) {
+        return separation(world.bodies[i].shape, transform_of(world.bodies[i].state),
+                          world.bodies[2].shape, transform_of(world.bodies[2].state));
+    };
+    CHECK(finite(world.bodies[2].state));
+    CHECK(world.work.overlap_guard_turns >= 1);
+    CHECK(world.work.overlap_guard_unsolved == 0);
+    CHECK(gap_of(0) >= -1e-6); // the issue's max-overlap target
+    CHECK(gap_of(1) >= -1e-6);
+    CHECK(world.bodies[2].state.angle < 0.0);               // clockwise
+    CHECK(world.bodies[2].state.angle > -4.0 * into / 0.4); // a small turn
+}
