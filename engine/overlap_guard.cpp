@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace impulse {
 
@@ -134,6 +135,8 @@ void move_group(World& world, double h, TimeSteppingScratch& s, int g, bool turn
         state.velocity = before.velocity;
         state.angular_velocity = before.angular_velocity;
         s.guard_moved[b] = 1;
+        join_bodies(s.guard_joined, s.guard_groups.bodies[static_cast<std::size_t>(b0)],
+                    static_cast<int>(b));
     }
 }
 
@@ -219,6 +222,8 @@ double moved_past_reach(const World& world, const TimeSteppingScratch& s) {
 
 void guard_overlaps(World& world, double h, TimeSteppingScratch& s) {
     s.guard_moved.assign(world.bodies.size(), 0);
+    s.guard_joined.resize(world.bodies.size());
+    std::iota(s.guard_joined.begin(), s.guard_joined.end(), 0);
     s.guard_saved.resize(world.bodies.size());
     run_passes(world, h, s);
     // A deep overlap's correction can carry a body past its reach, into a body
