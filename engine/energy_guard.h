@@ -16,7 +16,9 @@ namespace impulse {
 // kinetic energy K is less than dE, it goes back to its poses at the step's
 // start, at rest (energy P(x_k) <= E_k). Energy then never rises beyond
 // rounding, whatever moved the bodies. A body in no island that the overlap
-// guard moved is checked the same way on its own. Counted in
+// guard moved is checked the same way on its own. Islands that one group of
+// the overlap guard moved bodies of are checked as one (s.guard_joined), so a
+// return to x_k never undoes half of a separation. Counted in
 // world.work.energy_guard_steps and energy_guard_joules, and by path in
 // energy_guard_rescaled, energy_guard_returned and energy_guard_lone_bodies.
 void guard_energy(World& world, TimeSteppingScratch& s);

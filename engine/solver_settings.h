@@ -70,4 +70,24 @@ struct SolverSettings {
     int max_collisions_per_step = 4096;
 };
 
+// resting_method automatic starts a world of more than this many dynamic
+// bodies in time-stepping: the events model's cost grows with every pair of it
+// (as brute_force_bodies in local_stepping.cpp, the size beyond which pairs
+// need a broad phase).
+inline constexpr int events_bodies = 16;
+
+// true when resting contact is time-stepping from the first step, which is
+// known before it: "time-stepping", or "auto" with local stepping (the events
+// model needs every pair of the world at once) or with more than
+// events_bodies dynamic bodies. One rule for the engine (world.cpp) and the
+// scene loader (the tunnelling check), so a scene the engine steps by
+// time-stepping is never refused for what only events would do.
+inline bool starts_in_time_stepping(const SolverSettings& solver, int dynamic_bodies) {
+    if (!solver.resting || solver.resting_method == RestingMethod::events) {
+        return false;
+    }
+    return solver.resting_method == RestingMethod::time_stepping ||
+           solver.stepping == Stepping::local || dynamic_bodies > events_bodies;
+}
+
 } // namespace impulse

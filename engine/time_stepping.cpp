@@ -340,7 +340,7 @@ bool TimeStep::impacts(int first, int last, bool& pushed) {
     for (const int r : p.rows) {
         p.lambda.push_back(s_.impact_warm[static_cast<std::size_t>(r)]);
     }
-    if (!solve_island(world_, p, d_ / h_).solved) {
+    if (!solve_island(world_, p, d_ / h_).solved || !impulses_finite(p)) {
         return false;
     }
     apply_impulses(world_, p);
@@ -388,7 +388,7 @@ bool TimeStep::hold(int first, int last, bool& pushed) {
         p.q.push_back(u + (gap > 0.0 ? gap : 0.0) / h_);
         p.lambda.push_back(s_.warm[static_cast<std::size_t>(r)]);
     }
-    if (!solve_island(world_, p, tolerance).solved) {
+    if (!solve_island(world_, p, tolerance).solved || !impulses_finite(p)) {
         return false;
     }
     apply_impulses(world_, p);

@@ -9,6 +9,7 @@
 #include "mprgp.h"
 #include "pgs.h"
 
+#include <cmath>
 #include <vector>
 
 namespace impulse {
@@ -38,6 +39,41 @@ struct IslandProblem {
     PgsScratch pgs;
     MprgpScratch mprgp;
 };
+
+// false when some impulse of a solved problem is not finite. A problem with
+// no solution (the overlap guard's, translation only, for a body wedged
+// between two static bodies closer than its thickness: w_1 + w_2 = (g_1 +
+// g_2) / h < 0 for every impulse) sends the iterative solver's impulses to
+// infinity, and infinity times a static body's zero inverse mass is NaN: such
+// an answer is no solution and is never applied.
+inline bool impulses_finite(const IslandProblem& problem) {
+    for (const double l : problem.lambda) {
+        if (!std::isfinite(l)) {
+            return false;
+        }
+    }
+    return true;
+}
+
+// The root of body b in a union-find over bodies (path halving), and the
+// union of two bodies' sets, rooted at the smaller index so the result does not
+// depend on the order of the unions.
+inline int joined_root(std::vector<int>& parent, int b) {
+    while (parent[static_cast<std::size_t>(b)] != b) {
+        const std::size_t i = static_cast<std::size_t>(b);
+        parent[i] = parent[static_cast<std::size_t>(parent[i])];
+        b = parent[i];
+    }
+    return b;
+}
+
+inline void join_bodies(std::vector<int>& parent, int a, int b) {
+    const int ra = joined_root(parent, a);
+    const int rb = joined_root(parent, b);
+    if (ra != rb) {
+        parent[static_cast<std::size_t>(ra < rb ? rb : ra)] = ra < rb ? ra : rb;
+    }
+}
 
 struct TimeSteppingScratch {
     std::vector<BodyState> start;    // x_k, v_k of every body
@@ -72,7 +108,11 @@ struct TimeSteppingScratch {
     std::vector<double> island_energy; // per island: energy at the step's start
     std::vector<char> island_pushed;   // per island: some impulse acted
     std::vector<char> guard_moved;     // per body: the overlap guard moved it
-    std::vector<int> lone_body;        // the energy guard's one-body set
+    std::vector<int> energy_check;     // per body: the energy guard checks its unit
+    // Per body, a union-find parent: the bodies one overlap-guard group moved
+    // together, which the energy guard checks with each other's islands.
+    std::vector<int> guard_joined;
+    std::vector<int> energy_units; // the energy guard's bodies, grouped by unit
     IslandProblem problem;
     std::vector<double> pair_gap; // the overlap guard's separation of each candidate pair
     // The overlap guard's groups: candidate pairs within contact_tolerance

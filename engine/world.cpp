@@ -138,21 +138,12 @@ std::optional<StepError> step_events(World& world, double t0, double dt,
     return step_world(world, t0, dt, events);
 }
 
-// resting_method automatic starts a world this large in time-stepping: the
-// events model's cost grows with every pair of it (as brute_force_bodies in
-// local_stepping.cpp, the size beyond which pairs need a broad phase).
-constexpr int events_bodies = 16;
-
 bool starts_in_time_stepping(const World& world) {
-    if (world.solver.resting_method == RestingMethod::time_stepping ||
-        world.solver.stepping == Stepping::local) {
-        return true;
-    }
     int dynamic = 0;
     for (const Body& body : world.bodies) {
         dynamic += body.is_static() ? 0 : 1;
     }
-    return dynamic > events_bodies;
+    return starts_in_time_stepping(world.solver, dynamic);
 }
 
 // The failures that say the events model cannot carry the scene on, where

@@ -43,12 +43,13 @@ struct WorkCounters {
     long long energy_guard_steps = 0;   // islands whose energy rise was removed
     double energy_guard_joules = 0.0;   // energy those islands had gained, removed
     // Which path each of those fallbacks took (tests assert them):
-    long long energy_guard_rescaled = 0;       // islands whose velocities were scaled down
-    long long energy_guard_returned = 0;       // islands sent back to x_k at rest (K < the rise)
-    long long energy_guard_lone_bodies = 0;    // bodies in no island that the overlap guard
-                                               // moved, energy-checked on their own
-    long long overlap_guard_unsolved = 0;      // guard groups whose position problem failed
-                                               // (the overlap stays; max-overlap judges it)
+    long long energy_guard_rescaled = 0;    // islands whose velocities were scaled down
+    long long energy_guard_returned = 0;    // islands sent back to x_k at rest (K < the rise)
+    long long energy_guard_lone_bodies = 0; // bodies in no island that the overlap guard
+                                            // moved, energy-checked on their own
+    long long overlap_guard_unsolved = 0;   // guard groups whose position problem failed
+    long long overlap_guard_turns = 0; // guard groups solved only by turning (overlap_guard.cpp)
+                                       // (the overlap stays; max-overlap judges it)
     long long overlap_guard_pair_rebuilds = 0; // guard steps whose moves outran a reach
     long long reach_retries = 0;               // steps taken again because an impact outran a reach
     // resting_method automatic: the index of the first step taken by

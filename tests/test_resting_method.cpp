@@ -415,3 +415,41 @@ TEST_CASE("a scene that time-steps from its start is not refused for tunnelling"
                   R"(set "ccd": true or "resting_method": "time-stepping" in the solver block)"));
     }
 }
+
+TEST_CASE("auto with more than 16 dynamic bodies time-steps from its start, so it is not "
+          "refused for tunnelling",
+          "[resting-method][dense-robust]") {
+    // The engine starts "auto" in time-stepping above 16 dynamic bodies,
+    // whatever the stepping (starts_in_time_stepping, solver_settings.h); the
+    // loader used to count only local stepping, so a pile of 17 falling discs
+    // with "resting": true alone was refused for tunnelling the engine cannot
+    // do. Discs of radius 0.5 at 0.5 m above the ground under g = 1e9 reach
+    // sqrt(2 g 0.5) = 3.2e4 m/s, 316 m per 0.01 s step against their 2 m
+    // combined thickness.
+    const auto pile = [](int discs) {
+        std::string text =
+            R"({"schema":"impulse/scene@1","name":"m","dt":0.01,"duration":0.01,"gravity":[0,-1e9],)"
+            R"("solver":{"resting":true},"bodies":[)"
+            R"({"name":"ground","static":true,"shape":{"box":[50,0.5]},"position":[0,-0.5]})";
+        for (int i = 0; i < discs; ++i) {
+            text += R"(,{"name":"d)" + std::to_string(i) +
+                    R"(","shape":{"circle":0.5},"mass":1,"position":[)" + std::to_string(2 * i) +
+                    ",1]}";
+        }
+        return text + "]}";
+    };
+    const auto outcome = [](const std::string& text) {
+        const TempDir tmp;
+        const fs::path scene = tmp.dir / "m.json";
+        spit(scene, text);
+        return run_tool({"run", scene.string(), "--out", (tmp.dir / "out.json").string()});
+    };
+    const Outcome seventeen = outcome(pile(17));
+    INFO(seventeen.err);
+    CHECK(seventeen.exit_code == 0);
+    CHECK_FALSE(has(seventeen.err, "tunnelling"));
+    // 16 run events first, which test pairs at the ends of a step only.
+    const Outcome sixteen = outcome(pile(16));
+    require_one_sentence(sixteen);
+    CHECK(has(sixteen.err, "tunnelling"));
+}

@@ -190,4 +190,15 @@ inline bool time_stepping_from_start(const SolverSettings& solver) {
                                solver.stepping == Stepping::local));
 }
 
+// The same with the scene's bodies counted, the engine's own rule
+// (starts_in_time_stepping, solver_settings.h): "auto" also starts in
+// time-stepping with more than 16 dynamic bodies, whatever the stepping.
+inline bool time_stepping_from_start(const Scene& scene) {
+    int dynamic = 0;
+    for (const SceneBody& body : scene.bodies) {
+        dynamic += body.is_static ? 0 : 1;
+    }
+    return starts_in_time_stepping(scene.solver, dynamic);
+}
+
 } // namespace impulse::harness

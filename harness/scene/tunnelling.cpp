@@ -197,8 +197,9 @@ std::optional<TunnellingRefusal> tunnelling_refusal(const Scene& scene) {
     // turning reach), overlap, and the contact problem then forbids passing
     // through. Its candidates cover the swept motion as ccd does, so nothing
     // here applies. Only what is known at load counts: "auto" with world
-    // stepping may run events, which do tunnel.
-    if (scene.solver.ccd || time_stepping_from_start(scene.solver)) {
+    // stepping and at most 16 dynamic bodies may run events, which do tunnel;
+    // with more it starts in time-stepping, as the engine does.
+    if (scene.solver.ccd || time_stepping_from_start(scene)) {
         return std::nullopt;
     }
     const std::vector<Reach> reach = reaches_of(scene);
