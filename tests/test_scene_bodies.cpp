@@ -2,6 +2,7 @@
 // derived mass properties, polygon recentring, overlaps at t = 0, and one case
 // per rejected body, each checked for the file name, the exact JSON path and
 // the reason (support/scene_text.h).
+#include "body.h"
 #include "input_error.h"
 #include "manifold.h"
 #include "rotation.h"
@@ -359,6 +360,43 @@ TEST_CASE("bodies overlapping at t = 0", "[scene]") {
             {"name": "ground", "static": true, "shape": {"box": [5, 0.5]}, "position": [0, -0.5]}])"),
                          "bodies[2]", "'ground' overlaps bodies[1] 'box' at t = 0 by 0.25 m");
     }
+}
+
+// Ten boxes of half side 0.15 stacked at y = 0.15 + 0.3 k on a floor: in
+// decimal they touch, in binary some neighbours overlap by a rounding (the
+// precondition is checked with the narrow phase's own separation). Resting
+// contact counts a pair inside its band d as touching, so such a stack loads
+// with "resting": true; without it the refusal says what would carry it.
+TEST_CASE("bodies stacked at decimal heights touch under resting contact", "[scene]") {
+    nlohmann::json scene = nlohmann::json::parse(R"({
+        "schema": "impulse/scene@1", "name": "t", "description": "d", "gravity": [0, -9.81],
+        "restitution": 0.5, "dt": 0.01, "duration": 1, "solver": {"resting": true},
+        "bodies": [{"name": "floor", "static": true, "shape": {"box": [5, 0.5]},
+                    "position": [0, -0.5]}]})");
+    double deepest = 0.0;
+    for (int k = 0; k < 10; ++k) {
+        const double y = 0.15 + 0.3 * k;
+        scene["bodies"].push_back({{"name", "b" + std::to_string(k)},
+                                   {"shape", {{"box", {0.15, 0.15}}}},
+                                   {"position", {0.0, y}}});
+        if (k > 0) {
+            const impulse::Shape box = impulse::make_box(0.15, 0.15);
+            impulse::BodyState lower;
+            impulse::BodyState upper;
+            lower.position = {0.0, 0.15 + 0.3 * (k - 1)};
+            upper.position = {0.0, y};
+            deepest = std::min(deepest, impulse::separation(box, impulse::transform_of(lower), box,
+                                                            impulse::transform_of(upper)));
+        }
+    }
+    REQUIRE(deepest < 0.0);    // some pair overlaps by rounding alone
+    REQUIRE(deepest > -1e-15); // and by nothing more
+    CHECK(rejection(scene.dump()).empty());
+    scene["solver"]["resting"] = false;
+    const std::string refusal = rejection(scene.dump());
+    CHECK(refusal.find("at t = 0 by") != std::string::npos);
+    CHECK(refusal.find("no more than the rounding of the positions: with \"resting\": true such "
+                       "a pair counts as touching") != std::string::npos);
 }
 
 // Whatever a value is replaced with, the loader either accepts the scene or
