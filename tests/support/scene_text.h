@@ -59,6 +59,12 @@ inline std::string expecting(const std::string& expectations,
            R"( "expectations": )" + expectations + R"(, "bodies": )" + bodies + "}";
 }
 
+// expecting() in free space, without gravity.
+inline std::string free_space(const std::string& expectations,
+                              const std::string& bodies = free_bodies) {
+    return expecting(expectations, bodies, R"("gravity": [0, 0],)");
+}
+
 // The InputError message parse_scene gives for `text`, or "" when it accepts
 // the scene. Any other exception escapes and fails the test.
 inline std::string rejection(const std::string& text, const std::string& file = test_file) {
