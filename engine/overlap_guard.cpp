@@ -92,8 +92,13 @@ bool solve_group(World& world, double h, TimeSteppingScratch& s, int g, double m
         }
     }
     problem.lambda.assign(problem.points.size(), 0.0);
-    return !problem.points.empty() && solve_island(world, problem, d / h).solved &&
-           impulses_finite(problem);
+    if (problem.points.empty()) {
+        return false;
+    }
+    const long long products = world.work.solver_sweeps;
+    const bool solved = solve_island(world, problem, d / h).solved && impulses_finite(problem);
+    world.work.overlap_guard_products += world.work.solver_sweeps - products;
+    return solved;
 }
 
 // Group g's bodies move by h M^-1 J^T m (positions, and angles when `turn`;

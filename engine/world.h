@@ -51,6 +51,7 @@ struct WorkCounters {
     long long overlap_guard_turns = 0; // guard groups solved only by turning (overlap_guard.cpp)
                                        // (the overlap stays; max-overlap judges it)
     long long overlap_guard_pair_rebuilds = 0; // guard steps whose moves outran a reach
+    long long overlap_guard_products = 0;      // the guard's share of solver_sweeps
     long long reach_retries = 0;               // steps taken again because an impact outran a reach
     // resting_method automatic: the index of the first step taken by
     // time-stepping (steps before it were events), or -1 while events carry the scene.

@@ -12,7 +12,8 @@
 // threshold 0, the scene's 8 velocity and 3 position iterations, no sleeping.
 // Beside the times: the deepest overlap of each engine on the true shapes
 // (overlap.h) over every frame the benchmark stepped, and the impulse engine's
-// islands and solver sweeps per step. Run with scripts/bench-scale; the table at
+// islands and solver sweeps (matrix products) per step, and the overlap
+// guard's share of those products. Run with scripts/bench-scale; the table at
 // the end is the README's (markdown). Wall-clock numbers on a shared machine are
 // noisy: the ratio of two runs made moments apart is what the table is for.
 #include "body.h"
@@ -124,6 +125,8 @@ void report(benchmark::State& state, const Scene& scene, const Simulator& simula
         state.counters["islands"] = static_cast<double>(now.islands - since.islands) / steps;
         state.counters["sweeps"] =
             static_cast<double>(now.solver_sweeps - since.solver_sweeps) / steps;
+        state.counters["guard"] =
+            static_cast<double>(now.overlap_guard_products - since.overlap_guard_products) / steps;
         state.counters["unconverged"] =
             static_cast<double>(now.unconverged_islands - since.unconverged_islands);
     }
@@ -220,6 +223,7 @@ struct Measured {
     double per_body_step = 0.0; // µs of CPU
     double overlap = 0.0;       // m
     double sweeps = -1.0;       // per step; impulse only
+    double guard = -1.0;        // the overlap guard's share of sweeps
     double islands = -1.0;
     std::string stopped; // the engine's sentence when it refused or stopped
 };
@@ -263,6 +267,7 @@ class TableReporter : public benchmark::ConsoleReporter {
         m.per_body_step = 1e6 * seconds / (bodies->second.value * steps->second.value);
         m.overlap = counter(run, "overlap", 0.0);
         m.sweeps = counter(run, "sweeps", -1.0);
+        m.guard = counter(run, "guard", -1.0);
         m.islands = counter(run, "islands", -1.0);
         measured_[name] = m;
     }
@@ -331,6 +336,7 @@ std::string row_text(const std::string& pile, int n, const std::string& phase, c
                                          cell(theirs, b.overlap, "%.1e", stops),
                                          both ? overlap_ratio(b.overlap, o.overlap) : "-",
                                          cell(ours, o.sweeps, "%.1f", stops),
+                                         cell(ours, o.guard, "%.1f", stops),
                                          cell(ours, o.islands, "%.1f", stops)};
     std::string text = "|";
     for (const std::string& c : cells) {
@@ -343,8 +349,8 @@ std::string row_text(const std::string& pile, int n, const std::string& phase, c
 void TableReporter::print_table() const {
     std::printf("\n| pile | N | phase | impulse µs/body-step | Box2D µs/body-step | impulse / "
                 "Box2D | impulse overlap (m) | Box2D overlap (m) | Box2D / impulse overlap | "
-                "sweeps/step | islands/step |\n");
-    std::printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+                "sweeps/step | of which guard | islands/step |\n");
+    std::printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     std::vector<std::string> stops;
     for (const std::string& pile : piles) {
         for (const int n : sizes) {
