@@ -78,11 +78,11 @@ IslandSolve solve_iteratively(World& world, IslandProblem& p, double tolerance) 
 // MPRGP (mprgp.h), warm started from problem.lambda: about sqrt(cond A)
 // products where Gauss-Seidel needs about cond A sweeps, so a tall column
 // converges cold within the cap and a settled pile in one product.
-IslandSolve solve_by_mprgp(World& world, IslandProblem& p, double tolerance) {
+IslandSolve solve_by_mprgp(World& world, IslandProblem& p, double tolerance, int cap_factor) {
     PgsSettings settings;
     settings.tolerance = tolerance;
     settings.max_sweeps =
-        iterative_products_per_search_iteration * world.solver.max_search_iterations;
+        cap_factor * iterative_products_per_search_iteration * world.solver.max_search_iterations;
     const PgsResult r = solve_mprgp(world, p.points, p.q, p.lambda, settings, p.mprgp);
     world.work.solver_sweeps += r.sweeps;
     if (!r.converged) {
@@ -96,7 +96,7 @@ IslandSolve solve_by_mprgp(World& world, IslandProblem& p, double tolerance) {
 
 } // namespace
 
-IslandSolve solve_island(World& world, IslandProblem& problem, double tolerance) {
+IslandSolve solve_island(World& world, IslandProblem& problem, double tolerance, int cap_factor) {
     if (problem.points.size() <= direct_solve_points) {
         const IslandSolve direct = solve_directly(world, problem);
         if (direct.solved) {
@@ -105,12 +105,12 @@ IslandSolve solve_island(World& world, IslandProblem& problem, double tolerance)
         // Pivoting can cycle on a degenerate A (points of one manifold that
         // are redundant); MPRGP needs A only positive semidefinite.
         problem.lambda.assign(problem.points.size(), 0.0);
-        return solve_by_mprgp(world, problem, tolerance);
+        return solve_by_mprgp(world, problem, tolerance, cap_factor);
     }
     if (iterative_solver == IterativeSolver::pgs) {
         return solve_iteratively(world, problem, tolerance);
     }
-    return solve_by_mprgp(world, problem, tolerance);
+    return solve_by_mprgp(world, problem, tolerance, cap_factor);
 }
 
 } // namespace impulse

@@ -96,7 +96,8 @@ bool solve_group(World& world, double h, TimeSteppingScratch& s, int g, double m
         return false;
     }
     const long long products = world.work.solver_sweeps;
-    const bool solved = solve_island(world, problem, d / h).solved && impulses_finite(problem);
+    const bool solved =
+        solve_island(world, problem, d / h, guard_cap_factor).solved && impulses_finite(problem);
     world.work.overlap_guard_products += world.work.solver_sweeps - products;
     return solved;
 }

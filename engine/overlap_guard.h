@@ -21,6 +21,16 @@ namespace impulse {
 // the overlap is within d costs one measurement and ends the loop.
 inline constexpr int max_overlap_guard_passes = 8;
 
+// The guard's position problem may take this many times the product cap of
+// the impact and holding solves (island_lcp.h): it is the last word on
+// overlap, where an unconverged holding solve only leaves work for it. In
+// pile-boxes-10000 at 2.1 s its pile-wide problems (about 8,000 points)
+// stopped at the 2,000-product cap in every pass, and the 8 passes left
+// 2.3e-7 m, growing to 1.0e-2 m by 3 s; with four times the cap the pile kept
+// every overlap within d through that time at about the same products per
+// step (fewer passes). Scenes whose guard problems converge are unchanged.
+inline constexpr int guard_cap_factor = 4;
+
 // At the step's end poses, while some candidate pair is deeper than
 // contact_tolerance d (at most max_overlap_guard_passes times): the bodies
 // joined through candidate pairs within d (touching or deeper) form groups,

@@ -2,8 +2,10 @@
 // (lcp.h) and answers from physics: a single point, a column of boxes carried
 // by the floor, a settled pile, redundant points; and, hidden, its products
 // and wall time beside projected Gauss-Seidel (pgs.h).
+#include "island_lcp.h"
 #include "lcp.h"
 #include "mprgp.h"
+#include "overlap_guard.h"
 #include "pgs.h"
 #include "restitution.h"
 #include "support.h"
@@ -299,6 +301,41 @@ TEST_CASE("MPRGP: a column of 50 boxes converges cold in a few hundred products"
     const PgsResult warm = solve_mprgp(c.world, c.points, c.q, lambda, {tolerance, 1000}, scratch);
     CHECK(warm.converged);
     CHECK(warm.sweeps == 1);
+}
+
+TEST_CASE("An island solve's product cap scales with cap_factor, the overlap guard's four times",
+          "[mprgp]") {
+    // The column needs a few hundred products cold (above). With the search
+    // budget cut to 10 the cap is 100 products: the solve must stop there
+    // unconverged, and with the guard's factor (400 products) finish, every
+    // contact under box k carrying h g times the mass above it.
+    Problem c = column(50);
+    c.world.solver.max_search_iterations = 10;
+    const int cap = iterative_products_per_search_iteration * 10;
+    const double tolerance = d / h;
+    IslandProblem problem;
+    problem.points = c.points;
+    problem.q = c.q;
+    problem.lambda.assign(c.points.size(), 0.0);
+    const long long before = c.world.work.solver_sweeps;
+    const IslandSolve capped = solve_island(c.world, problem, tolerance);
+    REQUIRE_FALSE(capped.converged);
+    CHECK(c.world.work.solver_sweeps - before <= cap + 1);
+
+    problem.lambda.assign(c.points.size(), 0.0);
+    const long long again = c.world.work.solver_sweeps;
+    const IslandSolve guard = solve_island(c.world, problem, tolerance, guard_cap_factor);
+    REQUIRE(guard.converged);
+    CHECK(c.world.work.solver_sweeps - again > cap);
+    CHECK(c.world.work.solver_sweeps - again <= guard_cap_factor * cap + 1);
+    double carried = 0.0;
+    double bound = 0.0;
+    for (int k = 49; k >= 0; --k) {
+        carried += graded_mass(k);
+        bound += graded_mass(k) * (k + 1) * tolerance;
+        const std::size_t i = 2 * static_cast<std::size_t>(k);
+        CHECK(std::fabs(problem.lambda[i] + problem.lambda[i + 1] - h * g * carried) <= bound);
+    }
 }
 
 TEST_CASE("MPRGP: light boxes under heavy ones (1:100) converge about as fast as equal ones",
