@@ -38,12 +38,35 @@ bool moved_by_guard(const TimeSteppingScratch& s, int b0, int b1) {
     return false;
 }
 
+// True when the overlap guard marked some body of bodies[b0 .. b1) stuck.
+bool stuck(const TimeSteppingScratch& s, const std::vector<int>& bodies, int b0, int b1) {
+    if (s.guard_stuck.size() != s.start.size()) { // guard_overlaps did not run (a unit test)
+        return false;
+    }
+    for (int k = b0; k < b1; ++k) {
+        if (s.guard_stuck[static_cast<std::size_t>(bodies[static_cast<std::size_t>(k)])] != 0) {
+            return true;
+        }
+    }
+    return false;
+}
+
 // Checks the bodies bodies[b0 .. b1) together: if their energy rose beyond
 // rounding from s.start to now, their velocities are scaled down to take the
 // rise out, or, when their kinetic energy cannot pay for it, they go back to
 // their poses at the step's start, at rest.
 void check_bodies(World& world, TimeSteppingScratch& s, const std::vector<int>& bodies, int b0,
                   int b1) {
+    if (stuck(s, bodies, b0, b1)) {
+        // The overlap guard left one of these bodies deeper than d (overlap_guard.cpp,
+        // mark_stuck): the unit goes back to x_k, at rest, whatever its energy.
+        ++world.work.overlap_guard_returned;
+        for (int k = b0; k < b1; ++k) {
+            const std::size_t b = static_cast<std::size_t>(bodies[static_cast<std::size_t>(k)]);
+            world.bodies[b].state = {s.start[b].position, s.start[b].angle, {}, 0.0};
+        }
+        return;
+    }
     constexpr double rounding = 8.0 * std::numeric_limits<double>::epsilon();
     Energy before;
     Energy after;
@@ -109,7 +132,8 @@ void guard_energy(World& world, TimeSteppingScratch& s) {
         parent[b] = joined_root(parent, static_cast<int>(b));
     }
     for (std::size_t b = 0; b < n; ++b) { // a unit with one body to check is checked
-        if (s.guard_moved[b] != 0 || s.energy_check[b] != 0) {
+        if (s.guard_moved[b] != 0 || s.energy_check[b] != 0 ||
+            (s.guard_stuck.size() == n && s.guard_stuck[b] != 0)) {
             s.energy_check[static_cast<std::size_t>(parent[b])] = 1;
         }
     }

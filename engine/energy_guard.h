@@ -21,6 +21,9 @@ namespace impulse {
 // return to x_k never undoes half of a separation. Counted in
 // world.work.energy_guard_steps and energy_guard_joules, and by path in
 // energy_guard_rescaled, energy_guard_returned and energy_guard_lone_bodies.
+// A unit with a body the overlap guard could not bring within d
+// (s.guard_stuck) goes back to its poses at the step's start, at rest,
+// whatever its energy (world.work.overlap_guard_returned).
 void guard_energy(World& world, TimeSteppingScratch& s);
 
 } // namespace impulse

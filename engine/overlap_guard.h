@@ -48,6 +48,10 @@ inline constexpr int guard_cap_factor = 4;
 // are found again around the current poses, grown by how far it went beyond,
 // and the passes run once more (world.work.overlap_guard_pair_rebuilds): a
 // pair the step did not foresee, such as a box pushed into a wall, is held too.
+// A group whose iterative solve stopped unconverged is solved again as if every
+// body had the same mass (world.work.overlap_guard_equal_masses). If the passes
+// still end with a pair deeper than d, its dynamic bodies are marked in
+// s.guard_stuck, and guard_energy sends their units back to the step's start.
 void guard_overlaps(World& world, double h, TimeSteppingScratch& s);
 
 } // namespace impulse

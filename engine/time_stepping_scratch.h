@@ -121,6 +121,13 @@ struct TimeSteppingScratch {
     std::vector<IslandLink> guard_links;
     Islands guard_groups;
     std::vector<BodyState> guard_saved; // per body: its state before a group's move
+    // A group solved again with equal masses (overlap_guard.cpp): the mass
+    // metric's answer and the group's inverse masses, kept to be put back.
+    std::vector<double> guard_lambda;
+    std::vector<double> guard_inv_mass;
+    // Per body: in a pair the overlap guard left deeper than d; the energy
+    // guard sends its unit back to the step's start, at rest.
+    std::vector<char> guard_stuck;
 };
 
 } // namespace impulse

@@ -52,7 +52,11 @@ struct WorkCounters {
                                        // (the overlap stays; max-overlap judges it)
     long long overlap_guard_pair_rebuilds = 0; // guard steps whose moves outran a reach
     long long overlap_guard_products = 0;      // the guard's share of solver_sweeps
-    long long reach_retries = 0;               // steps taken again because an impact outran a reach
+    long long overlap_guard_equal_masses = 0;  // groups moved by their equal-mass answer
+    // Energy-guard units sent back to x_k, at rest: the overlap guard left a
+    // pair of them deeper than contact_tolerance (overlap_guard.cpp).
+    long long overlap_guard_returned = 0;
+    long long reach_retries = 0; // steps taken again because an impact outran a reach
     // resting_method automatic: the index of the first step taken by
     // time-stepping (steps before it were events), or -1 while events carry the scene.
     long long time_stepping_from_step = -1;
