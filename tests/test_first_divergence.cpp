@@ -3,6 +3,7 @@
 // output of the real binary naming the same one.
 #include "first_divergence.h"
 #include "support/files.h"
+#include "support/roots.h"
 #include "support/tool.h"
 #include "trajectory.h"
 
@@ -68,17 +69,9 @@ Trajectory one_ulp_impulse() {
 // A throwaway project holding a copy of one canonical scene.
 struct Project1 {
     TempDir temp;
-    fs::path scene(const std::string& name) const {
-        return temp.dir / "harness" / "scenes" / (name + ".json");
-    }
-    fs::path golden(const std::string& name) const {
-        return temp.dir / "goldens" / (name + ".json");
-    }
-    explicit Project1(const std::string& name) {
-        fs::create_directories(temp.dir / "harness" / "scenes");
-        fs::copy_file(fs::path(IMPULSE_SOURCE_DIR) / "harness" / "scenes" / (name + ".json"),
-                      scene(name));
-    }
+    fs::path root;
+    fs::path golden(const std::string& name) const { return root / "goldens" / (name + ".json"); }
+    explicit Project1(const std::string& name) : root(make_root(temp, {name}, Goldens::none)) {}
 };
 
 } // namespace
@@ -167,7 +160,7 @@ TEST_CASE("Scenes that start diverging at the same cause share one line", "[firs
 TEST_CASE("check, its JUnit and summary.md and diff all name the collision at t1",
           "[first-divergence]") {
     Project1 p("drop-box");
-    const std::string root = p.temp.dir.string();
+    const std::string root = p.root.string();
     REQUIRE(run_tool({"bless", "--root", root}).exit_code == 0);
     // A hand-made "engine change": the first bounce's impulse 1 ULP larger,
     // and the frames after it moved, in the golden itself.
@@ -216,18 +209,12 @@ TEST_CASE("check, its JUnit and summary.md and diff all name the collision at t1
 
 TEST_CASE("check names a cause two scenes share in one line", "[first-divergence]") {
     TempDir temp;
-    const fs::path scenes = temp.dir / "harness" / "scenes";
-    fs::create_directories(scenes);
-    for (const char* name : {"drop-box", "drop-circle"}) {
-        fs::copy_file(fs::path(IMPULSE_SOURCE_DIR) / "harness" / "scenes" /
-                          (std::string(name) + ".json"),
-                      scenes / (std::string(name) + ".json"));
-    }
-    const std::string root = temp.dir.string();
+    const fs::path root_dir = make_root(temp, {"drop-box", "drop-circle"}, Goldens::none);
+    const std::string root = root_dir.string();
     REQUIRE(run_tool({"bless", "--root", root}).exit_code == 0);
     // The same "engine change" in both: the first bounce's impulse 1 ULP off.
     for (const char* name : {"drop-box", "drop-circle"}) {
-        const fs::path golden = temp.dir / "goldens" / (std::string(name) + ".json");
+        const fs::path golden = root_dir / "goldens" / (std::string(name) + ".json");
         Trajectory t = read_trajectory_file(golden.string(), "a golden");
         REQUIRE(!t.events.empty());
         t.events[0].impulse = next_up(t.events[0].impulse);
