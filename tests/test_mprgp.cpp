@@ -26,8 +26,6 @@ using namespace impulse::test::contact_problems;
 
 namespace {
 
-constexpr double d = 1e-9; // the default contact tolerance
-
 // The floor's impulses (body 0 in a packing, the last body in a column).
 double floor_impulse(const Problem& p, const std::vector<double>& lambda, int floor) {
     double sum = 0.0;

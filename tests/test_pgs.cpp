@@ -21,12 +21,6 @@ using impulse::test::static_body;
 using impulse::test::uniform;
 using namespace impulse::test::contact_problems;
 
-namespace {
-
-constexpr double d = 1e-9; // the default contact tolerance
-
-} // namespace
-
 TEST_CASE("a single point gets lambda = -q / A exactly", "[pgs]") {
     World world = make_world({dynamic_body(make_circle(0.3), 2.0, {0.0, 0.3}, 0.0, {0.0, -g * h}),
                               static_body(make_box(5.0, 0.5), {0.0, -0.5})},

@@ -19,6 +19,7 @@ namespace impulse::test::contact_problems {
 
 constexpr double g = 9.81;
 constexpr double h = 1.0 / 60.0;
+constexpr double d = 1e-9; // the default contact tolerance: d / h is the residual asked for
 
 // One island's problem: the world, its points, q.
 struct Problem {
