@@ -18,13 +18,14 @@
 #include "fuzz_support.h"
 #include "input_error.h"
 #include "output_path.h"
+// The tests' own record of what is at a path, so that both judge "untouched" alike.
+#include "../tests/support/path_state.h"
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <sys/stat.h>
@@ -35,6 +36,8 @@ namespace {
 
 namespace fs = std::filesystem;
 using impulse::fuzz::finding;
+using impulse::test::spit;
+using impulse::test::state_of;
 
 enum Kind {
     missing,
@@ -56,32 +59,6 @@ enum Kind {
 
 bool must_be_written(Kind kind) {
     return kind == missing || kind == regular || kind == standard_output;
-}
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-void spit(const fs::path& path, const std::string& text) {
-    std::ofstream(path, std::ios::binary) << text;
-}
-
-// What is at a path (lstat), with a file's bytes or a link's target.
-std::string state_of(const fs::path& path) {
-    struct stat info {};
-    if (::lstat(path.c_str(), &info) != 0) {
-        return "missing";
-    }
-    if (S_ISLNK(info.st_mode)) {
-        return "link to " + fs::read_symlink(path).string();
-    }
-    if (S_ISREG(info.st_mode)) {
-        return "file " + slurp(path);
-    }
-    return "mode " + std::to_string(info.st_mode) + " device " + std::to_string(info.st_rdev);
 }
 
 // Valid UTF-8 without control characters: exactly the text printable_path()

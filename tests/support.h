@@ -68,6 +68,29 @@ struct Drop {
     }
 };
 
+// The corner of a box of half extents a x b turned by `angle` that flat
+// ground below touches first, relative to the box's centre.
+inline Vec2 lowest_corner(double a, double b, double angle) {
+    const Rotation q = rotation_of(angle);
+    Vec2 lowest = rotate(q, {a, b});
+    for (Vec2 corner : {Vec2{-a, b}, Vec2{-a, -b}, Vec2{a, -b}}) {
+        const Vec2 w = rotate(q, corner);
+        if (w.y < lowest.y) {
+            lowest = w;
+        }
+    }
+    return lowest;
+}
+
+// That corner, rx from the centre along x, landing at speed v on static
+// ground (docs/physics.md, Eq. 9 for one point):
+// j = (1 + e) v / (1/M + rx^2 / I), with I = M (4a^2 + 4b^2) / 12.
+struct CornerLanding {
+    double a, b, mass, e, rx;
+    double inertia() const { return mass * (4 * a * a + 4 * b * b) / 12.0; }
+    double impulse(double v) const { return (1.0 + e) * v / (1.0 / mass + rx * rx / inertia()); }
+};
+
 // Runs the world step by step from t = 0 until `steps` are done or an error.
 inline std::vector<CollisionEvent> run_steps(World& world, double dt, long long steps) {
     std::vector<CollisionEvent> events;

@@ -9,6 +9,7 @@
 #include "overlap_guard.h"
 #include "support.h"
 #include "support/files.h"
+#include "support/guard_scratch.h"
 #include "support/tool.h"
 #include "time_stepping_scratch.h"
 #include "world.h"
@@ -56,13 +57,8 @@ TEST_CASE("the overlap guard leaves a body that cannot fit where it is, finite, 
                     static_body(make_box(2.0, 0.5), {0.0, y + half + below_ceiling + 0.5}),
                     dynamic_body(make_box(0.5, half), 1.0, {0.0, y})},
                    {0.0, -9.81}, 0.5, time_stepping());
-    TimeSteppingScratch s;
-    for (const Body& b : world.bodies) {
-        s.start.push_back(b.state);
-        s.poses.push_back(transform_of(b.state));
-    }
-    s.reach.assign(3, 0.0);
-    s.pairs = {{0, 2, world.solver.contact_tolerance}, {1, 2, world.solver.contact_tolerance}};
+    TimeSteppingScratch s = guard_scratch(
+        world, {{0, 2, world.solver.contact_tolerance}, {1, 2, world.solver.contact_tolerance}});
     const BodyState floor = world.bodies[0].state;
     const BodyState ceiling = world.bodies[1].state;
     guard_overlaps(world, h, s);
@@ -90,13 +86,8 @@ TEST_CASE("the overlap guard turns a slab free when no translation can separate 
                               static_body(make_box(0.05, 0.05), {0.4, 0.1 + above}),
                               dynamic_body(make_box(0.5, 0.05), 1.0, {0.0, 0.0})},
                              {0.0, -9.81}, 0.5, time_stepping());
-    TimeSteppingScratch s;
-    for (const Body& b : world.bodies) {
-        s.start.push_back(b.state);
-        s.poses.push_back(transform_of(b.state));
-    }
-    s.reach.assign(3, 0.0);
-    s.pairs = {{0, 2, world.solver.contact_tolerance}, {1, 2, world.solver.contact_tolerance}};
+    TimeSteppingScratch s = guard_scratch(
+        world, {{0, 2, world.solver.contact_tolerance}, {1, 2, world.solver.contact_tolerance}});
     guard_overlaps(world, h, s);
     const auto gap_of = [&world](std::size_t i) {
         return separation(world.bodies[i].shape, transform_of(world.bodies[i].state),

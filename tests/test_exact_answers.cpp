@@ -81,25 +81,18 @@ TEST_CASE("Single-corner impact on static ground at many angles, masses and spee
         const double dt = time_steps[trial % 3];
 
         const Shape box = make_box(a, b);
-        const Rotation q = rotation_of(angle);
-        Vec2 lowest = rotate(q, {a, b});
-        for (Vec2 corner : {Vec2{-a, b}, Vec2{-a, -b}, Vec2{a, -b}}) {
-            const Vec2 w = rotate(q, corner);
-            if (w.y < lowest.y) {
-                lowest = w;
-            }
-        }
+        const Vec2 lowest = test::lowest_corner(a, b, angle);
         const double t_hit = uniform(rng, 0.1, 1.0);
         const Vec2 centre{0.0, -lowest.y + v * t_hit};
         World world = make_world({static_body(make_box(1000, 1), {0, -1}),
                                   dynamic_body(box, mass, centre, angle, {0, -v})},
                                  {0, 0}, e, solver_with(Integrator::verlet));
 
-        // Exact answer (docs/physics.md): j = (1 + e) v / (1/M + rx^2 / I), I = M (4a^2 + 4b^2)
-        // / 12.
-        const double inertia = mass * (4 * a * a + 4 * b * b) / 12.0;
+        // Exact answer (docs/physics.md): Eq. 9 for the one corner (support.h).
+        const test::CornerLanding landing{a, b, mass, e, lowest.x};
+        const double inertia = landing.inertia();
         const double rx = lowest.x;
-        const double j = (1.0 + e) * v / (1.0 / mass + rx * rx / inertia);
+        const double j = landing.impulse(v);
         const double vy_after = -v + j / mass;
         const double w_after = rx * j / inertia;
 

@@ -5,6 +5,7 @@
 #include "expectations.h"
 #include "run.h"
 #include "scene.h"
+#include "support.h"
 #include "support/expectation_results.h"
 #include "support/scene_text.h"
 #include "support/trajectories.h"
@@ -26,18 +27,6 @@ using namespace impulse::test;
 using Json = nlohmann::json;
 
 namespace {
-
-// docs/physics.md, drop: impact n at t1 + sum_{k=1..n-1} 2 e^k v1 / g.
-double drop_impact_time(double h0, double g, double e, int n) {
-    const double v1 = std::sqrt(2.0 * g * h0);
-    double t = v1 / g;
-    double ek = 1.0;
-    for (int k = 1; k < n; ++k) {
-        ek *= e;
-        t += 2.0 * ek * v1 / g;
-    }
-    return t;
-}
 
 Json ground() {
     return {{"name", "ground"},
@@ -86,8 +75,9 @@ TEST_CASE("drop expectations hold at rtol 1e-9 on real runs", "[expectations]") 
         INFO("h0 " << c.h0 << " g " << c.g << " e " << c.e << " " << c.integrator << " dt "
                    << c.dt);
         // End at the apex after the last impact: half the next flight, e^n v1 / g.
-        const double last = drop_impact_time(c.h0, c.g, c.e, c.impacts);
-        const double next = drop_impact_time(c.h0, c.g, c.e, c.impacts + 1);
+        const Drop drop{c.h0, c.g, c.e};
+        const double last = drop.impact_time(c.impacts);
+        const double next = drop.impact_time(c.impacts + 1);
         Json body = {{"name", "body"}, {"mass", 2.0}, {"position", {0.3, 0.5 + c.h0}}};
         if (c.circle) {
             body["shape"] = {{"circle", 0.5}};
@@ -240,7 +230,7 @@ TEST_CASE("energy never increases on real runs with e = 0.5", "[expectations]") 
         const Json ball = {
             {"name", "ball"}, {"shape", {{"circle", 0.5}}}, {"mass", 1.5}, {"position", {0, 2.5}}};
         const double h0 = 2.0, g = 9.81, e = 0.5;
-        const double end = 0.5 * (drop_impact_time(h0, g, e, 3) + drop_impact_time(h0, g, e, 4));
+        const double end = Drop{h0, g, e}.duration(3); // between impacts 3 and 4
         const std::vector<ExpectationResult> results = run_and_evaluate(
             scene_json(g, e, 1.0 / 60.0, end, "verlet", {ground(), ball}, expectation));
         INFO(listing(results));

@@ -9,6 +9,7 @@
 // edge, where the scene runs. The rules: docs/refusals-and-progress.md,
 // "Scales the engine cannot resolve".
 #include "support/bad_input.h"
+#include "support/input_pile.h"
 
 #include <catch2/catch.hpp>
 #include <filesystem>
@@ -20,19 +21,9 @@ using namespace impulse::test;
 
 namespace {
 
-// Six bodies of both kinds on 3 columns and 2 rows at spacing 0.71, dropped
-// for five steps; "resting": true with six bodies runs the event model. Named
-// drop-box: the gate runs each case in place of that canonical scene.
-const std::string pile = R"({
-  "schema": "impulse/scene@1",
-  "name": "drop-box",
-  "restitution": 0.5,
-  "dt": 0.01,
-  "duration": 0.05,
-  "solver": {"integrator": "verlet", "resting": true},
-  "pile": {"count": 6, "shape": "mixed", "size": [0.05, 0.25], "density": [1, 4], "spacing": 0.71, "seed": 1}
-}
-)";
+// The input tests' pile (support/input_pile.h): six bodies of both kinds
+// dropped for five steps, named drop-box.
+const std::string pile = input_pile();
 
 // A ball of radius 0.25 m above a ground 1 m thick (inradius 0.5 m).
 const std::string ball = R"({
@@ -49,12 +40,11 @@ const std::string ball = R"({
 )";
 
 std::string pile_value(const std::string& key, const std::string& value) {
-    return replace_once(pile, line_of(pile, "pile"), with_value(line_of(pile, "pile"), key, value));
+    return with_pile_value(pile, key, value);
 }
 
 std::string pile_solver(const std::string& block) {
-    return replace_once(pile, R"("solver": {"integrator": "verlet", "resting": true})",
-                        R"("solver": )" + block);
+    return with_pile_solver(pile, block);
 }
 
 std::string with_gravity(const std::string& scene, const std::string& gravity) {

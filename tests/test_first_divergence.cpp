@@ -2,14 +2,14 @@
 // value over frames and events, its tie rule, its cause sentence, and every
 // output of the real binary naming the same one.
 #include "first_divergence.h"
+#include "support/comparing.h"
 #include "support/files.h"
+#include "support/roots.h"
 #include "support/tool.h"
 #include "trajectory.h"
 
 #include <catch2/catch.hpp>
-#include <cmath>
 #include <filesystem>
-#include <limits>
 #include <string>
 
 using namespace impulse::harness;
@@ -18,25 +18,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double inf = std::numeric_limits<double>::infinity();
+using comparing::up;
 
-double next_up(double value) {
-    return std::nextafter(value, inf);
-}
-
+// The sample's bounce, between box and ground.
 TrajectoryEvent bounce(double t, double impulse) {
-    TrajectoryEvent e;
-    e.t = t;
-    e.a = "box";
-    e.b = "ground";
-    e.point[0] = 0.25;
-    e.point[1] = 0.0;
-    e.normal[0] = 0.0;
-    e.normal[1] = 1.0;
-    e.impulse = impulse;
-    e.vn_before = -2.0;
-    e.vn_after = 1.5;
-    return e;
+    return comparing::event(t, "box", "ground", impulse);
 }
 
 // One box, frames a quarter second apart, one bounce at t = 0.3 s.
@@ -59,26 +45,18 @@ Trajectory golden() {
 // the bounce moved: the new run a one-ULP change in Eq. 9 would give.
 Trajectory one_ulp_impulse() {
     Trajectory t = golden();
-    t.events[0].impulse = next_up(t.events[0].impulse);
-    t.frames[2][5] = next_up(t.frames[2][5]); // box.vy at 0.5
-    t.frames[3][2] = next_up(t.frames[3][2]); // box.y at 0.75
+    t.events[0].impulse = up(t.events[0].impulse);
+    t.frames[2][5] = up(t.frames[2][5]); // box.vy at 0.5
+    t.frames[3][2] = up(t.frames[3][2]); // box.y at 0.75
     return t;
 }
 
 // A throwaway project holding a copy of one canonical scene.
 struct Project1 {
     TempDir temp;
-    fs::path scene(const std::string& name) const {
-        return temp.dir / "harness" / "scenes" / (name + ".json");
-    }
-    fs::path golden(const std::string& name) const {
-        return temp.dir / "goldens" / (name + ".json");
-    }
-    explicit Project1(const std::string& name) {
-        fs::create_directories(temp.dir / "harness" / "scenes");
-        fs::copy_file(fs::path(IMPULSE_SOURCE_DIR) / "harness" / "scenes" / (name + ".json"),
-                      scene(name));
-    }
+    fs::path root;
+    fs::path golden(const std::string& name) const { return root / "goldens" / (name + ".json"); }
+    explicit Project1(const std::string& name) : root(make_root(temp, {name}, Goldens::none)) {}
 };
 
 } // namespace
@@ -106,8 +84,8 @@ TEST_CASE("Ties: an event before a frame at the same time, then column order",
         Trajectory gold = golden();
         gold.events[0].t = 0.5; // the bounce at the frame's time
         Trajectory value = gold;
-        value.frames[2][5] = next_up(value.frames[2][5]);
-        value.events[0].vn_after = next_up(value.events[0].vn_after);
+        value.frames[2][5] = up(value.frames[2][5]);
+        value.events[0].vn_after = up(value.events[0].vn_after);
         const Comparison c = compare(gold, value, std::nullopt);
         const Divergence* d = earliest_divergence(c);
         REQUIRE(d != nullptr);
@@ -115,8 +93,8 @@ TEST_CASE("Ties: an event before a frame at the same time, then column order",
     }
     SECTION("two frame columns at the same time: the golden's column order") {
         Trajectory value = golden();
-        value.frames[1][5] = next_up(value.frames[1][5]); // box.vy
-        value.frames[1][2] = next_up(value.frames[1][2]); // box.y, an earlier column
+        value.frames[1][5] = up(value.frames[1][5]); // box.vy
+        value.frames[1][2] = up(value.frames[1][2]); // box.y, an earlier column
         const Comparison c = compare(golden(), value, std::nullopt);
         const std::optional<FirstDivergence> first = first_divergence_of(c);
         REQUIRE(first);
@@ -128,7 +106,7 @@ TEST_CASE("Ties: an event before a frame at the same time, then column order",
     }
     SECTION("a frame earlier than the differing event: the frame, and it is said") {
         Trajectory value = one_ulp_impulse();
-        value.frames[1][5] = next_up(value.frames[1][5]); // box.vy at 0.25, before the bounce
+        value.frames[1][5] = up(value.frames[1][5]); // box.vy at 0.25, before the bounce
         const std::optional<FirstDivergence> first =
             first_divergence_of(compare(golden(), value, std::nullopt));
         REQUIRE(first);
@@ -139,7 +117,7 @@ TEST_CASE("Ties: an event before a frame at the same time, then column order",
         Trajectory gold = golden();
         gold.events.push_back(bounce(0.6, 2.0));
         Trajectory value = gold;
-        value.events[1].impulse = next_up(2.0);
+        value.events[1].impulse = up(2.0);
         const std::optional<FirstDivergence> first =
             first_divergence_of(compare(gold, value, std::nullopt));
         REQUIRE(first);
@@ -157,7 +135,7 @@ TEST_CASE("Scenes that start diverging at the same cause share one line", "[firs
     checks[0].comparison = compare(golden(), one_ulp_impulse(), std::nullopt);
     checks[1].comparison = checks[0].comparison;
     Trajectory other = golden();
-    other.frames[1][2] = next_up(other.frames[1][2]);
+    other.frames[1][2] = up(other.frames[1][2]);
     checks[2].comparison = compare(golden(), other, std::nullopt);
     const std::vector<std::string> lines = shared_causes(checks);
     REQUIRE(lines.size() == 1);
@@ -167,19 +145,19 @@ TEST_CASE("Scenes that start diverging at the same cause share one line", "[firs
 TEST_CASE("check, its JUnit and summary.md and diff all name the collision at t1",
           "[first-divergence]") {
     Project1 p("drop-box");
-    const std::string root = p.temp.dir.string();
+    const std::string root = p.root.string();
     REQUIRE(run_tool({"bless", "--root", root}).exit_code == 0);
     // A hand-made "engine change": the first bounce's impulse 1 ULP larger,
     // and the frames after it moved, in the golden itself.
     const Trajectory blessed = read_trajectory_file(p.golden("drop-box").string(), "a golden");
     REQUIRE(!blessed.events.empty());
     Trajectory moved = blessed;
-    moved.events[0].impulse = next_up(moved.events[0].impulse);
+    moved.events[0].impulse = up(moved.events[0].impulse);
     const double t1 = blessed.events[0].t;
     std::size_t later = 0;
     for (std::vector<double>& frame : moved.frames) {
         if (frame[0] > t1) {
-            frame[5] = next_up(frame[5]); // box.vy
+            frame[5] = up(frame[5]); // box.vy
             ++later;
         }
     }
@@ -216,21 +194,15 @@ TEST_CASE("check, its JUnit and summary.md and diff all name the collision at t1
 
 TEST_CASE("check names a cause two scenes share in one line", "[first-divergence]") {
     TempDir temp;
-    const fs::path scenes = temp.dir / "harness" / "scenes";
-    fs::create_directories(scenes);
-    for (const char* name : {"drop-box", "drop-circle"}) {
-        fs::copy_file(fs::path(IMPULSE_SOURCE_DIR) / "harness" / "scenes" /
-                          (std::string(name) + ".json"),
-                      scenes / (std::string(name) + ".json"));
-    }
-    const std::string root = temp.dir.string();
+    const fs::path root_dir = make_root(temp, {"drop-box", "drop-circle"}, Goldens::none);
+    const std::string root = root_dir.string();
     REQUIRE(run_tool({"bless", "--root", root}).exit_code == 0);
     // The same "engine change" in both: the first bounce's impulse 1 ULP off.
     for (const char* name : {"drop-box", "drop-circle"}) {
-        const fs::path golden = temp.dir / "goldens" / (std::string(name) + ".json");
+        const fs::path golden = root_dir / "goldens" / (std::string(name) + ".json");
         Trajectory t = read_trajectory_file(golden.string(), "a golden");
         REQUIRE(!t.events.empty());
-        t.events[0].impulse = next_up(t.events[0].impulse);
+        t.events[0].impulse = up(t.events[0].impulse);
         spit(golden, write_trajectory(t));
     }
     const fs::path report = temp.dir / "report";

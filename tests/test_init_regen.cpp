@@ -13,14 +13,7 @@
 #include <vector>
 
 namespace fs = std::filesystem;
-using impulse::test::has;
-using impulse::test::Outcome;
-using impulse::test::require_exit;
-using impulse::test::run_tool_in;
-using impulse::test::slurp;
-using impulse::test::snapshot;
-using impulse::test::spit;
-using impulse::test::TempDir;
+using namespace impulse::test;
 
 namespace {
 

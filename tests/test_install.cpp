@@ -5,6 +5,7 @@
 // built against the installed package with find_package(impulse) and run on
 // canonical scenes.
 #include "scene.h"
+#include "support/program.h"
 #include "support/tool.h"
 #include "trajectory.h"
 
@@ -15,31 +16,11 @@
 
 namespace fs = std::filesystem;
 using impulse::test::Outcome;
+using impulse::test::run_program;
 using impulse::test::slurp;
 using impulse::test::TempDir;
 
 namespace {
-
-// Runs any program (looked up in PATH) to the end, stdout and stderr to files.
-Outcome run_program(const std::vector<std::string>& args) {
-    const TempDir capture;
-    const fs::path out = capture.dir / "stdout", err = capture.dir / "stderr";
-    std::vector<char*> argv;
-    std::vector<std::string> copies = args;
-    for (std::string& a : copies) {
-        argv.push_back(a.data());
-    }
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t files;
-    posix_spawn_file_actions_init(&files);
-    posix_spawn_file_actions_addopen(&files, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    posix_spawn_file_actions_addopen(&files, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    pid_t pid = 0;
-    const int spawned = posix_spawnp(&pid, argv[0], &files, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&files);
-    REQUIRE(spawned == 0);
-    return impulse::test::outcome_of(impulse::test::wait_for(pid), out, err);
-}
 
 // The build tree the test was built in: IMPULSE_BUILD_DIR (CTest sets it),
 // else the tool's folder's parent (the build writes the tool to BUILD/bin).

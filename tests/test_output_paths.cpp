@@ -14,6 +14,7 @@
 // the FIFO (the defect) then reads a one-byte file and says something else,
 // instead of hanging the test. No clock is involved.
 #include "support/files.h"
+#include "support/path_state.h"
 #include "support/roots.h"
 #include "support/tool.h"
 #include "support/utf8.h"
@@ -65,35 +66,6 @@ Outcome run_tool_feeding(const fs::path& fifo, const std::vector<std::string>& a
         status = wait_for(pid);
     }
     return outcome_of(status, out_file, err_file);
-}
-
-// What is at a path, as lstat sees it, with a file's bytes, a link's target
-// or a folder's entries: equal before and after means untouched.
-std::string state_of(const fs::path& path) {
-    struct stat info {};
-    if (::lstat(path.c_str(), &info) != 0) {
-        return "missing";
-    }
-    if (S_ISLNK(info.st_mode)) {
-        return "link to " + fs::read_symlink(path).string();
-    }
-    if (S_ISREG(info.st_mode)) {
-        return "file " + slurp(path);
-    }
-    if (S_ISDIR(info.st_mode)) {
-        std::string entries = "folder";
-        for (const fs::directory_entry& e : fs::directory_iterator(path)) {
-            entries += " " + e.path().filename().string();
-        }
-        return entries;
-    }
-    if (S_ISFIFO(info.st_mode)) {
-        return "fifo";
-    }
-    if (S_ISCHR(info.st_mode)) {
-        return "character device " + std::to_string(info.st_rdev);
-    }
-    return "other";
 }
 
 // Refused as bad input: exit 2, one line on stderr naming the path and the words.

@@ -56,20 +56,8 @@ bool same_bits(const SceneBody& a, const SceneBody& b) {
            std::memcmp(&a.shape.polygon, &b.shape.polygon, sizeof a.shape.polygon) == 0;
 }
 
-// read_pile on the block's JSON; the FieldError's path and message when it refuses.
-std::string pile_refusal(const std::string& block) {
-    const nlohmann::json json = nlohmann::json::parse(block);
-    Scene scene;
-    try {
-        impulse::harness::scene_reading::read_pile(
-            impulse::harness::scene_reading::Node(json, "pile"), scene);
-    } catch (const impulse::harness::json_fields::FieldError& e) {
-        return e.path + ": " + e.message;
-    }
-    return "";
-}
-
-// read_pile after the listed `bodies` of a scene; the refusal as above.
+// read_pile after the listed `bodies` of a scene; the FieldError's path and
+// message when it refuses.
 std::string pile_refusal_with(const std::vector<SceneBody>& listed, const std::string& block) {
     const nlohmann::json json = nlohmann::json::parse(block);
     Scene scene = scene_of(listed);
@@ -81,6 +69,12 @@ std::string pile_refusal_with(const std::vector<SceneBody>& listed, const std::s
         return e.path + ": " + e.message;
     }
     return "";
+}
+
+// read_pile on the block's JSON alone; the FieldError's path and message when
+// it refuses.
+std::string pile_refusal(const std::string& block) {
+    return pile_refusal_with({}, block);
 }
 
 } // namespace

@@ -8,6 +8,7 @@
 // The rules themselves are in docs/formats.md ("The pile block", the solver
 // table, "Expectations"); test_pile.cpp checks the generator.
 #include "support/bad_input.h"
+#include "support/input_pile.h"
 
 #include <catch2/catch.hpp>
 #include <filesystem>
@@ -19,26 +20,12 @@ using namespace impulse::test;
 
 namespace {
 
-// A valid pile scene, six bodies of both kinds dropped for five steps; every
-// case below changes one thing in it. Six bodies with "resting": true run the
-// event model (auto, world stepping), which the tunnelling check applies to.
-// Named drop-box: the gate runs each case in place of that canonical scene,
-// and a refusal made before simulating (tunnelling) comes after the check
-// that a scene's name is its file's.
-const std::string valid_pile = R"({
-  "schema": "impulse/scene@1",
-  "name": "drop-box",
-  "restitution": 0.5,
-  "dt": 0.01,
-  "duration": 0.05,
-  "solver": {"integrator": "verlet", "resting": true},
-  "pile": {"count": 6, "shape": "mixed", "size": [0.05, 0.25], "density": [1, 4], "spacing": 0.71, "seed": 1},
-  "expectations": [
+// A valid pile scene (support/input_pile.h) with both pile expectations;
+// every case below changes one thing in it.
+const std::string valid_pile = input_pile(R"(  "expectations": [
     {"kind": "max-overlap", "atol": 1e-6},
     {"kind": "at-rest", "after": 0.05, "rtol": 1e9}
-  ]
-}
-)";
+  ])");
 
 std::string pile_edit(const std::string& from, const std::string& to) {
     return replace_once(valid_pile, from, to);
@@ -46,13 +33,11 @@ std::string pile_edit(const std::string& from, const std::string& to) {
 
 // The pile block's line with one member's value replaced.
 std::string pile_value(const std::string& key, const std::string& value) {
-    return replace_once(valid_pile, line_of(valid_pile, "pile"),
-                        with_value(line_of(valid_pile, "pile"), key, value));
+    return with_pile_value(valid_pile, key, value);
 }
 
 std::string solver(const std::string& block) {
-    return pile_edit(R"("solver": {"integrator": "verlet", "resting": true})",
-                     R"("solver": )" + block);
+    return with_pile_solver(valid_pile, block);
 }
 
 const std::string at_rest = R"({"kind": "at-rest", "after": 0.05, "rtol": 1e9})";

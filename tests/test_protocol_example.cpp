@@ -12,12 +12,7 @@
 #include <string>
 
 namespace fs = std::filesystem;
-using impulse::test::Outcome;
-using impulse::test::require_exit;
-using impulse::test::run_tool_in;
-using impulse::test::slurp;
-using impulse::test::spit;
-using impulse::test::TempDir;
+using namespace impulse::test;
 
 TEST_CASE("the protocol page's smallest engine runs behind the gate as printed",
           "[engine-protocol]") {

@@ -7,15 +7,14 @@
 #include "exact_answers.h"
 #include "scene.h"
 #include "support/files.h"
+#include "support/program.h"
 #include "support/tool.h"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <fcntl.h>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <spawn.h>
 #include <string>
 #include <vector>
 
@@ -46,25 +45,7 @@ std::string python3() {
 
 // Runs `python3 SCRIPT SCENE` as the harness would, without a shell.
 Outcome run_engine_script(const fs::path& script, const fs::path& scene) {
-    const std::string python = python3();
-    const TempDir capture;
-    const fs::path out = capture.dir / "stdout", err = capture.dir / "stderr";
-    std::vector<std::string> args = {python, script.string(), scene.string()};
-    std::vector<char*> argv;
-    for (std::string& a : args) {
-        argv.push_back(a.data());
-    }
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t files;
-    posix_spawn_file_actions_init(&files);
-    posix_spawn_file_actions_addopen(&files, 0, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&files, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    posix_spawn_file_actions_addopen(&files, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    pid_t pid = 0;
-    const int spawned = posix_spawn(&pid, python.c_str(), &files, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&files);
-    REQUIRE(spawned == 0);
-    return impulse::test::outcome_of(impulse::test::wait_for(pid), out, err);
+    return impulse::test::run_program({python3(), script.string(), scene.string()});
 }
 
 // A normalized scene (docs/engine-protocol.md): every key explicit, the

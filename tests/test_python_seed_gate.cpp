@@ -23,13 +23,7 @@
 namespace fs = std::filesystem;
 using impulse::harness::DropLadder;
 using impulse::harness::Scene;
-using impulse::test::has;
-using impulse::test::Outcome;
-using impulse::test::require_exit;
-using impulse::test::run_tool_in;
-using impulse::test::slurp;
-using impulse::test::spit;
-using impulse::test::TempDir;
+using namespace impulse::test;
 
 namespace {
 

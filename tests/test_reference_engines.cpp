@@ -11,29 +11,21 @@
 #include "scene.h"
 #include "support/files.h"
 #include "support/outcome.h"
+#include "support/program.h"
 #include "support/tool.h"
 #include "support/tool_in_folder.h"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <fcntl.h>
 #include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <spawn.h>
 #include <string>
 #include <vector>
 
 namespace fs = std::filesystem;
-using impulse::test::has;
-using impulse::test::Outcome;
-using impulse::test::require_exit;
-using impulse::test::run_tool;
-using impulse::test::run_tool_in;
-using impulse::test::slurp;
-using impulse::test::spit;
-using impulse::test::TempDir;
+using namespace impulse::test;
 using nlohmann::json;
 
 namespace {
@@ -108,24 +100,7 @@ json run_in(const std::string& command, const fs::path& scene_file, const TempDi
 // `node SCRIPT SCENE` run directly, as the harness would but without it:
 // for scenes the harness's own loader would refuse before any engine runs.
 Outcome run_node(const std::string& script, const fs::path& scene_file) {
-    const TempDir capture;
-    const fs::path out = capture.dir / "stdout", err = capture.dir / "stderr";
-    std::vector<std::string> args = {IMPULSE_NODE, script, scene_file.string()};
-    std::vector<char*> argv;
-    for (std::string& a : args) {
-        argv.push_back(a.data());
-    }
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t files;
-    posix_spawn_file_actions_init(&files);
-    posix_spawn_file_actions_addopen(&files, 0, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&files, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    posix_spawn_file_actions_addopen(&files, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    pid_t pid = 0;
-    const int spawned = posix_spawn(&pid, argv[0], &files, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&files);
-    REQUIRE(spawned == 0);
-    return impulse::test::outcome_of(impulse::test::wait_for(pid), out, err);
+    return impulse::test::run_program({IMPULSE_NODE, script, scene_file.string()});
 }
 
 std::size_t column(const json& trajectory, const std::string& name) {

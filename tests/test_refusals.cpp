@@ -5,6 +5,7 @@
 //  - a scene that could tunnel without ccd is refused (run, check, bless,
 //    render, box2d) or warned about (sweep), with the safe dt.
 #include "support/files.h"
+#include "support/outcome.h"
 #include "support/tool.h"
 
 #include <catch2/catch.hpp>
@@ -28,15 +29,6 @@ std::string ball_scene(const std::string& ball, const std::string& extra = "") {
 }
 
 const std::string plain_ball = R"("shape":{"circle":0.5},"mass":1,"position":[0,1])";
-
-// One line, no stack trace, no abort.
-void require_one_sentence(const Outcome& o) {
-    INFO(o.err);
-    REQUIRE(o.exited);
-    CHECK(o.exit_code == 2);
-    CHECK(o.err.find('\n') == o.err.size() - 1);
-    CHECK(o.err.find("internal error") == std::string::npos);
-}
 
 std::string four_digits(double value) {
     char text[32];

@@ -2,10 +2,12 @@
 // refuses to be blessed, `impulse regen` writes no golden, unless --partial,
 // which writes the others and names what it leaves inconsistent.
 #include "support/files.h"
+#include "support/roots.h"
 #include "support/tool.h"
 
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <iterator>
 #include <map>
 #include <string>
 
@@ -18,20 +20,12 @@ const char* const scene_names[] = {"drop-box", "drop-circle", "glancing"};
 
 struct ThreeScenes {
     TempDir temp;
+    fs::path root =
+        make_root(temp, {std::begin(scene_names), std::end(scene_names)}, Goldens::none);
     fs::path scene(const std::string& name) const {
-        return temp.dir / "harness" / "scenes" / (name + ".json");
+        return root / "harness" / "scenes" / (name + ".json");
     }
-    fs::path golden(const std::string& name) const {
-        return temp.dir / "goldens" / (name + ".json");
-    }
-    ThreeScenes() {
-        fs::create_directories(temp.dir / "harness" / "scenes");
-        for (const char* name : scene_names) {
-            fs::copy_file(fs::path(IMPULSE_SOURCE_DIR) / "harness" / "scenes" /
-                              (std::string(name) + ".json"),
-                          scene(name));
-        }
-    }
+    fs::path golden(const std::string& name) const { return root / "goldens" / (name + ".json"); }
     std::map<std::string, std::string> goldens() const {
         std::map<std::string, std::string> bytes;
         for (const char* name : scene_names) {
@@ -63,7 +57,7 @@ struct ThreeScenes {
 
 TEST_CASE("regen writes no golden when one scene of three refuses", "[regen-all-or-nothing]") {
     ThreeScenes p;
-    const std::string root = p.temp.dir.string();
+    const std::string root = p.root.string();
     REQUIRE(run_tool({"regen", "--root", root}).exit_code == 0);
     const std::map<std::string, std::string> before = p.goldens();
     p.change_scenes();
@@ -101,7 +95,7 @@ TEST_CASE("regen writes no golden when one scene of three refuses", "[regen-all-
 TEST_CASE("regen writes no golden when one scene of three cannot be loaded",
           "[regen-all-or-nothing]") {
     ThreeScenes p;
-    const std::string root = p.temp.dir.string();
+    const std::string root = p.root.string();
     REQUIRE(run_tool({"regen", "--root", root}).exit_code == 0);
     const std::map<std::string, std::string> before = p.goldens();
     p.change_scenes();

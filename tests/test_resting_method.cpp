@@ -10,6 +10,7 @@
 #include "scene.h"
 #include "scene_writer.h"
 #include "support/files.h"
+#include "support/outcome.h"
 #include "support/scene_text.h"
 #include "support/tool.h"
 
@@ -34,19 +35,6 @@ std::string disc_scene(const std::string& solver, double y = 5.0,
            R"(,"bodies":[{"name":"ground","static":true,"shape":{"box":[5,0.5]},"position":[0,-0.5]},)"
            R"({"name":"ball","shape":{"circle":0.5},"mass":1,"position":[0,)" +
            std::to_string(y) + "]}]}";
-}
-
-// One line, exit 2, no abort, no stack trace.
-void require_one_sentence(const Outcome& o) {
-    INFO(o.err);
-    REQUIRE(o.exited);
-    CHECK(o.exit_code == 2);
-    CHECK(o.err.find('\n') == o.err.size() - 1);
-    CHECK(o.err.find("internal error") == std::string::npos);
-}
-
-bool has(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
 }
 
 // `run` refuses the scene with "FILE: PATH: ..." containing `words`, and the

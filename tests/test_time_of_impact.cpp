@@ -150,14 +150,7 @@ Tally corners(TimeOfImpactMethod toi) {
         const double t_hit = uniform(rng, 0.1, 1.0);
         const double dt = time_steps[(trial / 2) % 2];
 
-        const Rotation q = rotation_of(angle);
-        Vec2 lowest = rotate(q, {a, b});
-        for (Vec2 corner : {Vec2{-a, b}, Vec2{-a, -b}, Vec2{a, -b}}) {
-            const Vec2 w = rotate(q, corner);
-            if (w.y < lowest.y) {
-                lowest = w;
-            }
-        }
+        const Vec2 lowest = test::lowest_corner(a, b, angle);
         // The lowest corner falls v0 t + g t^2 / 2 to the ground, arriving at v = v0 + g t.
         const Vec2 centre{0.0, -lowest.y + v0 * t_hit + 0.5 * g * t_hit * t_hit};
         const double v = v0 + g * t_hit;
@@ -165,9 +158,10 @@ Tally corners(TimeOfImpactMethod toi) {
                                   dynamic_body(make_box(a, b), mass, centre, angle, {0, -v0})},
                                  {0, -g}, e, solver_with(Integrator::verlet, toi));
 
-        const double inertia = mass * (4 * a * a + 4 * b * b) / 12.0;
+        const test::CornerLanding landing{a, b, mass, e, lowest.x};
+        const double inertia = landing.inertia();
         const double rx = lowest.x;
-        const double j = (1.0 + e) * v / (1.0 / mass + rx * rx / inertia);
+        const double j = landing.impulse(v);
 
         std::vector<CollisionEvent> events;
         const long long steps = static_cast<long long>(1.5 / dt);

@@ -7,6 +7,7 @@
 #include "manifold.h"
 #include "overlap_guard.h"
 #include "support.h"
+#include "support/guard_scratch.h"
 #include "support/random_piles.h"
 #include "time_stepping_scratch.h"
 #include "world.h"
@@ -17,6 +18,7 @@
 
 using namespace impulse;
 using impulse::test::dynamic_body;
+using impulse::test::guard_scratch;
 using impulse::test::static_body;
 using impulse::test::time_stepping;
 using impulse::test::piles::deepest_overlap;
@@ -503,13 +505,7 @@ TEST_CASE("the overlap guard holds a pair its own move created: a disc pushed in
                     dynamic_body(make_circle(r), 1.0, {r + gap, 0.0}),
                     dynamic_body(make_circle(r), 1000.0, {r + gap + 2.0 * r - overlap, 0.0})},
                    {0.0, 0.0}, 0.5, time_stepping());
-    TimeSteppingScratch s;
-    for (const Body& b : world.bodies) {
-        s.start.push_back(b.state);
-        s.poses.push_back(transform_of(b.state));
-    }
-    s.reach.assign(3, 0.0);
-    s.pairs = {{1, 2, world.solver.contact_tolerance}};
+    TimeSteppingScratch s = guard_scratch(world, {{1, 2, world.solver.contact_tolerance}});
     guard_overlaps(world, h, s);
     const auto gap_of = [&world](std::size_t i, std::size_t k) {
         return separation(world.bodies[i].shape, transform_of(world.bodies[i].state),

@@ -4,6 +4,7 @@
 // report a few ULP, and a golden 0 gives a finite relative difference.
 #include "compare.h"
 #include "scaled_difference.h"
+#include "support/comparing.h"
 #include "tolerance.h"
 #include "trajectory.h"
 
@@ -13,47 +14,16 @@
 #include <limits>
 
 using namespace impulse::harness;
+using namespace impulse::test::comparing;
 
 namespace {
 
-constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr double quiet_nan = std::numeric_limits<double>::quiet_NaN();
-constexpr double tiny = std::numeric_limits<double>::denorm_min();
+// comparing.h's sample: box.vx is 0, 0, 0, 2 (its scale 2) and box.omega is 0
+// throughout. Its events are the same in every run compared here.
 
-double up(double value, int ulps = 1) {
-    for (int i = 0; i < ulps; ++i) {
-        value = std::nextafter(value, inf);
-    }
-    return value;
-}
-
-// One box, four frames a quarter second apart; box.vx is 0, 0, 0, 2 (its
-// scale 2) and box.omega is 0 throughout.
-Trajectory sample() {
-    Trajectory t;
-    t.scene = "drop";
-    t.columns = {"t", "box.x", "box.y", "box.angle", "box.vx", "box.vy", "box.omega"};
-    t.frames = {
-        {0.0, 0.0, 3.0, 0.5, 0.0, 0.0, 0.0},
-        {0.25, 0.5, 2.75, 0.5, 0.0, -2.5, 0.0},
-        {0.5, 0.5, 1.0, 0.5, 0.0, -5.0, 0.0},
-        {0.75, 0.5, 0.5, 0.5, 2.0, 4.0, 0.0},
-    };
-    return t;
-}
-
+// Every channel bounded by `ulp` ULP alone.
 Tolerances every_channel(std::uint64_t ulp) {
-    ChannelTolerance t;
-    t.ulp = ulp;
-    Tolerances tolerances;
-    for (auto& slot : tolerances.channels) {
-        slot = t;
-    }
-    return tolerances;
-}
-
-const ChannelSummary& summary(const Comparison& c, Channel channel) {
-    return c.channels[static_cast<std::size_t>(channel)];
+    return impulse::test::comparing::every_channel(tol(0.0, 0.0, ulp));
 }
 
 } // namespace

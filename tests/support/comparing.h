@@ -1,5 +1,6 @@
 // Trajectories, tolerances and tool calls the comparison tests share
-// (test_compare.cpp, test_compare_reports.cpp): a hand-made sample whose
+// (test_compare.cpp, test_compare_reports.cpp, test_first_divergence.cpp,
+// test_ulp_scale.cpp): a hand-made sample whose
 // differences can be worked out by hand, ULP steps, and the diff verb and the
 // whole tool run in-process.
 #pragma once
@@ -10,6 +11,7 @@
 #include "sha256.h"
 #include "tolerance.h"
 #include "tool.h"
+#include "trajectories.h"
 #include "trajectory.h"
 
 #include <catch2/catch.hpp>
@@ -48,19 +50,10 @@ inline std::uint64_t bits_of(double value) {
     return bits;
 }
 
+// An event of the sample's bounce (the point, the normal and the normal
+// velocities fixed) between `a` and `b` at `t`.
 inline TrajectoryEvent event(double t, const std::string& a, const std::string& b, double impulse) {
-    TrajectoryEvent e;
-    e.t = t;
-    e.a = a;
-    e.b = b;
-    e.point[0] = 0.25;
-    e.point[1] = 0.0;
-    e.normal[0] = 0.0;
-    e.normal[1] = 1.0;
-    e.impulse = impulse;
-    e.vn_before = -2.0;
-    e.vn_after = 1.5;
-    return e;
+    return make_event(t, a, b, 0.25, 0.0, 0.0, 1.0, impulse, -2.0, 1.5);
 }
 
 // One body, four frames a quarter second apart, two events. Values are chosen

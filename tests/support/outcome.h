@@ -16,6 +16,16 @@ inline void require_exit(const Outcome& o, int code) {
     REQUIRE(o.exit_code == code);
 }
 
+// A refusal as the user meets it where no file or JSON path is asserted:
+// exit 2, one line on stderr, no abort and no stack trace.
+inline void require_one_sentence(const Outcome& o) {
+    INFO(o.err);
+    REQUIRE(o.exited);
+    CHECK(o.exit_code == 2);
+    CHECK(o.err.find('\n') == o.err.size() - 1);
+    CHECK(o.err.find("internal error") == std::string::npos);
+}
+
 inline bool has(const std::string& text, const std::string& part) {
     return text.find(part) != std::string::npos;
 }
