@@ -359,12 +359,16 @@ double moved_past_reach(const World& world, const TimeSteppingScratch& s) {
 
 } // namespace
 
-void guard_overlaps(World& world, double h, TimeSteppingScratch& s) {
+void guard_overlaps(World& world, double h, TimeSteppingScratch& s, bool pairs_stale) {
     s.guard_moved.assign(world.bodies.size(), 0);
     s.guard_joined.resize(world.bodies.size());
     std::iota(s.guard_joined.begin(), s.guard_joined.end(), 0);
     s.guard_saved.resize(world.bodies.size());
     s.guard_stuck.assign(world.bodies.size(), 0);
+    if (pairs_stale) {
+        ++world.work.overlap_guard_pair_rebuilds;
+        find_pairs_around(world, world.solver.contact_tolerance, s);
+    }
     bool within = run_passes(world, h, s);
     // A deep overlap's correction can carry a body past its reach, into a body
     // it had no candidate pair with (a box pushed 7 cm into a wall in

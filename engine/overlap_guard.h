@@ -52,6 +52,9 @@ inline constexpr int guard_cap_factor = 4;
 // body had the same mass (world.work.overlap_guard_equal_masses). If the passes
 // still end with a pair deeper than d, its dynamic bodies are marked in
 // s.guard_stuck, and guard_energy sends their units back to the step's start.
-void guard_overlaps(World& world, double h, TimeSteppingScratch& s);
+// With pairs_stale (the step's reach retries ran out while a body could
+// still have met one it held no point with) the pairs are found again around
+// the end poses before the first pass, so every overlap is among them.
+void guard_overlaps(World& world, double h, TimeSteppingScratch& s, bool pairs_stale = false);
 
 } // namespace impulse

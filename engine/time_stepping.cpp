@@ -164,13 +164,22 @@ std::optional<StepError> TimeStep::run() {
     const std::size_t events_at_start = events_.size();
     start();
     s_.reach_floor.assign(world_.bodies.size(), 0.0);
+    bool pairs_stale = false;
     for (int attempt = 0;; ++attempt) {
         if (std::optional<StepError> error = solve_islands()) {
             restore();
             events_.resize(events_at_start);
             return error;
         }
-        if (attempt == max_reach_retries || !outran_reach()) {
+        if (!outran_reach()) {
+            break;
+        }
+        if (attempt == max_reach_retries) {
+            // The retries ran out with a body that may still have met one
+            // it held no point with: the guard finds its pairs again around
+            // the end poses, so no overlap escapes it (pile-discs-10000 at
+            // 2.4 s: two discs 5.1e-4 m deep, a pair the guard never saw).
+            pairs_stale = true;
             break;
         }
         ++world_.work.reach_retries;
@@ -184,7 +193,7 @@ std::optional<StepError> TimeStep::run() {
         restore();
         events_.resize(events_at_start);
     }
-    guard_overlaps(world_, h_, s_);
+    guard_overlaps(world_, h_, s_, pairs_stale);
     guard_energy(world_, s_);
     keep(s_, s_.held, world_.warm_impulses);
     return std::nullopt;

@@ -5,6 +5,7 @@
 #include "mprgp.h"
 #include "overlap_guard.h"
 #include "support.h"
+#include "support/guard_scratch.h"
 #include "time_stepping_scratch.h"
 #include "world.h"
 
@@ -74,4 +75,37 @@ TEST_CASE("the overlap guard lifts a row of sunken boxes by their overlaps, face
         CHECK(std::fabs(box.state.position.x - before.position.x) <= d);
         CHECK(box.state.angle == before.angle);
     }
+}
+
+TEST_CASE("the overlap guard finds the pairs again when the step's retries ran out",
+          "[overlap-guard]") {
+    // Two unit-mass discs of r = 0.1 m, 1e-4 m into each other, with no
+    // candidate pair between them: what a step leaves when a body outran its
+    // reach more often than the step retries (pile-discs-10000 at 2.4 s: two
+    // discs 5.1e-4 m deep that the guard never saw). Told the pairs are
+    // stale, the guard finds them around the end poses and moves the discs
+    // apart along the line of centres, 5e-5 m each (equal masses share the
+    // move equally); without being told, it leaves them.
+    const double r = 0.1;
+    const double into = 1e-4;
+    const auto discs = [&] {
+        return make_world({dynamic_body(make_circle(r), 1.0, {0.0, 0.0}),
+                           dynamic_body(make_circle(r), 1.0, {2.0 * r - into, 0.0})},
+                          {0.0, 0.0}, 0.5, time_stepping());
+    };
+    const double d = discs().solver.contact_tolerance;
+
+    World told = discs();
+    TimeSteppingScratch s = test::guard_scratch(told, {});
+    guard_overlaps(told, 1.0 / 60.0, s, true);
+    const double gap = told.bodies[1].state.position.x - told.bodies[0].state.position.x - 2.0 * r;
+    CHECK(std::fabs(gap) <= d);
+    CHECK(std::fabs(told.bodies[0].state.position.x + 0.5 * into) <= d);
+    CHECK(told.bodies[0].state.position.y == 0.0);
+
+    World untold = discs();
+    TimeSteppingScratch u = test::guard_scratch(untold, {});
+    guard_overlaps(untold, 1.0 / 60.0, u);
+    CHECK(untold.bodies[0].state.position.x == 0.0);
+    CHECK(untold.work.overlap_guard_passes == 0);
 }
