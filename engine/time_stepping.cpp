@@ -32,14 +32,11 @@ void look_up(const std::vector<WarmImpulse>& old, const TimeSteppingScratch& s,
     std::size_t w = 0;
     for (std::size_t i = 0; i < s.points.size() && w < old.size(); ++i) {
         const ContactPoint& p = s.points[i];
-        const int k = s.feature[i];
-        const auto before = [&](const WarmImpulse& o) {
-            return o.a != p.a ? o.a < p.a : o.b != p.b ? o.b < p.b : o.k < k;
-        };
-        while (w < old.size() && before(old[w])) {
+        const WarmImpulse key{p.a, p.b, s.feature[i], 0.0};
+        while (w < old.size() && warm_key_before(old[w], key)) {
             ++w;
         }
-        if (w < old.size() && old[w].a == p.a && old[w].b == p.b && old[w].k == k) {
+        if (w < old.size() && !warm_key_before(key, old[w])) {
             warm[i] = old[w].impulse;
         }
     }

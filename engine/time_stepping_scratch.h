@@ -128,6 +128,10 @@ struct TimeSteppingScratch {
     // Per body: in a pair the overlap guard left deeper than d; the energy
     // guard sends its unit back to the step's start, at rest.
     std::vector<char> guard_stuck;
+    // The overlap guard's warm starts: this step's first-pass answers
+    // (unsorted until the step's end) and the keys of a problem's points.
+    std::vector<WarmImpulse> guard_warm_next;
+    std::vector<WarmImpulse> guard_keys;
 };
 
 } // namespace impulse

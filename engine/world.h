@@ -97,6 +97,11 @@ struct WarmImpulse {
     double impulse = 0.0;
 };
 
+// The (a, b, k) order warm starts are kept in.
+inline bool warm_key_before(const WarmImpulse& x, const WarmImpulse& y) {
+    return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.k < y.k;
+}
+
 struct World {
     std::vector<Body> bodies;
     // Every pair that is not two static bodies, in body order: what the seed's
@@ -113,6 +118,10 @@ struct World {
     // Time-stepping (solver.resting_method): last step's holding impulses in
     // (a, b, k) order, and scratch.
     std::vector<WarmImpulse> warm_impulses;
+    // The overlap guard's first-pass answers of its large problems, in (a, b,
+    // k) order, k the point's index among its pair's rows: the next step's
+    // first pass starts from them (overlap_guard.cpp).
+    std::vector<WarmImpulse> guard_warm_impulses;
     TimeSteppingScratchSlot ts;
 };
 

@@ -19,45 +19,69 @@ using impulse::test::dynamic_body;
 using impulse::test::static_body;
 using impulse::test::time_stepping;
 
-TEST_CASE("the overlap guard lifts a row of sunken boxes by their overlaps, face rows merged",
-          "[overlap-guard]") {
-    // 70 squares side by side, each face to face with its neighbours and
-    // turned by 1e-8 rad, so that one bottom corner is 2e-9 m (2 d) deeper
-    // than the other; the deeper is sunk 2 d, 3 d or 4 d into the floor, the
-    // other within the guard's margin (d + 2 x the deepest). 140 floor points,
-    // with the side points a problem above diagonal_scaling_points, whose two
-    // rows per face contact the guard merges into one, which must keep the
-    // deeper corner's gap. The side normals are all but horizontal, so the
-    // least move lifts each box by its deeper corner's overlap and moves none
-    // sideways or round: every floor gap ends within d of 0 in one pass
-    // (keeping the shallower corner's gap would leave 2 d for a second).
-    const int count = 70;
+namespace {
+
+// `count` squares of half side 0.1 m side by side on a static floor, each
+// face to face with its neighbours and turned by 1e-8 rad, so that one bottom
+// corner is 2e-9 m (2 d) deeper than the other; the deeper is sunk 2 d, 3 d or
+// 4 d into the floor (`sunk`), the other within the guard's margin (d + 2 x
+// the deepest). The scratch holds every floor and neighbour pair.
+struct SunkenRow {
+    World world;
+    std::vector<double> sunk;
+    TimeSteppingScratch s;
+};
+
+SunkenRow sunken_row(int count) {
     const double half = 0.1;
     const double turn = 1e-8;
-    World world = make_world({static_body(make_box(10.0, 0.5), {0.0, -0.5})}, {0.0, -9.81}, 0.5,
-                             time_stepping());
-    const double d = world.solver.contact_tolerance;
-    std::vector<double> sunk;
+    SunkenRow row{make_world({static_body(make_box(10.0, 0.5), {0.0, -0.5})}, {0.0, -9.81}, 0.5,
+                             time_stepping()),
+                  {},
+                  {}};
+    const double d = row.world.solver.contact_tolerance;
     for (int k = 0; k < count; ++k) {
-        sunk.push_back((2 + k % 3) * d);
-        const double y = half * (std::cos(turn) + std::sin(turn)) - sunk.back();
-        world.bodies.push_back(dynamic_body(make_box(half, half), 1.0 + 0.5 * (k % 4),
-                                            {(2 * k - count) * half, y}, turn));
+        row.sunk.push_back((2 + k % 3) * d);
+        const double y = half * (std::cos(turn) + std::sin(turn)) - row.sunk.back();
+        row.world.bodies.push_back(dynamic_body(make_box(half, half), 1.0 + 0.5 * (k % 4),
+                                                {(2 * k - count) * half, y}, turn));
     }
-    REQUIRE(2 * count > static_cast<int>(diagonal_scaling_points)); // the floor's points alone
-    TimeSteppingScratch s;
-    for (const Body& b : world.bodies) {
-        s.start.push_back(b.state);
-        s.poses.push_back(transform_of(b.state));
-    }
-    s.reach.assign(world.bodies.size(), 1.0);
+    std::vector<CandidatePair> pairs;
     for (int k = 1; k <= count; ++k) {
-        s.pairs.push_back({0, k, 1.0});
+        pairs.push_back({0, k, 1.0});
         if (k < count) {
-            s.pairs.push_back({k, k + 1, 1.0});
+            pairs.push_back({k, k + 1, 1.0});
         }
     }
-    guard_overlaps(world, 1.0 / 60.0, s);
+    row.s = test::guard_scratch(row.world, pairs);
+    row.s.reach.assign(row.world.bodies.size(), 1.0);
+    return row;
+}
+
+// Puts every body of the row back where it started.
+void restart(SunkenRow& row) {
+    for (std::size_t b = 0; b < row.world.bodies.size(); ++b) {
+        row.world.bodies[b].state = row.s.start[b];
+    }
+}
+
+} // namespace
+
+TEST_CASE("the overlap guard lifts a row of sunken boxes by their overlaps, face rows merged",
+          "[overlap-guard]") {
+    // 140 floor points, with the side points a problem above
+    // diagonal_scaling_points, whose two rows per face contact the guard
+    // merges into one, which must keep the deeper corner's gap. The side
+    // normals are all but horizontal, so the least move lifts each box by its
+    // deeper corner's overlap and moves none sideways or round: every floor
+    // gap ends within d of 0 in one pass (keeping the shallower corner's gap
+    // would leave 2 d for a second).
+    const int count = 70;
+    SunkenRow row = sunken_row(count);
+    World& world = row.world;
+    const double d = world.solver.contact_tolerance;
+    REQUIRE(2 * count > static_cast<int>(diagonal_scaling_points)); // the floor's points alone
+    guard_overlaps(world, 1.0 / 60.0, row.s);
     CHECK(world.work.overlap_guard_unsolved == 0);
     // A polygon pair's gap is linear in a translation until its closest
     // features change, so one solved pass is exact: a second pass would
@@ -65,16 +89,64 @@ TEST_CASE("the overlap guard lifts a row of sunken boxes by their overlaps, face
     CHECK(world.work.overlap_guard_passes == 1);
     for (int k = 1; k <= count; ++k) {
         const Body& box = world.bodies[static_cast<std::size_t>(k)];
-        const BodyState& before = s.start[static_cast<std::size_t>(k)];
+        const BodyState& before = row.s.start[static_cast<std::size_t>(k)];
         const double gap = separation(world.bodies[0].shape, transform_of(world.bodies[0].state),
                                       box.shape, transform_of(box.state));
         INFO("box " << k << ": floor gap " << gap << " m");
         CHECK(std::fabs(gap) <= d);
         CHECK(std::fabs(box.state.position.y - before.position.y -
-                        sunk[static_cast<std::size_t>(k - 1)]) <= d);
+                        row.sunk[static_cast<std::size_t>(k - 1)]) <= d);
         CHECK(std::fabs(box.state.position.x - before.position.x) <= d);
         CHECK(box.state.angle == before.angle);
     }
+}
+
+TEST_CASE("the overlap guard's first pass starts a large problem from the last step's answer",
+          "[overlap-guard]") {
+    // The same sunken row met twice, as in a pile whose holding step leaves
+    // the same overlaps step after step. The first time the guard's problem
+    // is solved cold, to its tolerance; the second time its first pass starts
+    // from that answer, which already meets the tolerance, so MPRGP makes the
+    // one product that measures its residual and moves the boxes as before.
+    SunkenRow row = sunken_row(70);
+    World& world = row.world;
+    const double h = 1.0 / 60.0;
+    guard_overlaps(world, h, row.s);
+    const long long cold = world.work.overlap_guard_products;
+    REQUIRE(world.work.overlap_guard_passes == 1);
+    REQUIRE(cold > 1);
+    REQUIRE_FALSE(world.guard_warm_impulses.empty());
+    std::vector<BodyState> lifted;
+    for (const Body& b : world.bodies) {
+        lifted.push_back(b.state);
+    }
+    restart(row);
+    guard_overlaps(world, h, row.s);
+    CHECK(world.work.overlap_guard_products - cold == 1);
+    const double d = world.solver.contact_tolerance;
+    for (std::size_t b = 1; b < world.bodies.size(); ++b) {
+        INFO("box " << b);
+        CHECK(std::fabs(world.bodies[b].state.position.y - lifted[b].position.y) <= d);
+        CHECK(std::fabs(world.bodies[b].state.position.x - lifted[b].position.x) <= d);
+    }
+}
+
+TEST_CASE("the overlap guard starts a problem of at most diagonal_scaling_points cold",
+          "[overlap-guard]") {
+    // 20 squares: 40 floor points and 19 face contacts, below the threshold.
+    // Met twice, the second solve makes the products of the first: nothing
+    // was kept to start from, so small problems (every canonical pile's) are
+    // solved as they always were.
+    SunkenRow row = sunken_row(20);
+    World& world = row.world;
+    const double h = 1.0 / 60.0;
+    guard_overlaps(world, h, row.s);
+    const long long cold = world.work.overlap_guard_products;
+    REQUIRE(cold > 1);
+    CHECK(world.guard_warm_impulses.empty());
+    restart(row);
+    guard_overlaps(world, h, row.s);
+    CHECK(world.work.overlap_guard_products == 2 * cold);
 }
 
 TEST_CASE("the overlap guard finds the pairs again when the step's retries ran out",
