@@ -78,13 +78,16 @@ IslandSolve solve_iteratively(World& world, IslandProblem& p, double tolerance) 
 // MPRGP (mprgp.h), warm started from problem.lambda: about sqrt(cond A)
 // products where Gauss-Seidel needs about cond A sweeps, so a tall column
 // converges cold within the cap and a settled pile in one product.
-IslandSolve solve_by_mprgp(World& world, IslandProblem& p, double tolerance, int cap_factor) {
+PgsResult run_mprgp(World& world, IslandProblem& p, double tolerance, int max_products) {
     PgsSettings settings;
     settings.tolerance = tolerance;
-    settings.max_sweeps =
-        cap_factor * iterative_products_per_search_iteration * world.solver.max_search_iterations;
+    settings.max_sweeps = max_products;
     const PgsResult r = solve_mprgp(world, p.points, p.q, p.lambda, settings, p.mprgp);
     world.work.solver_sweeps += r.sweeps;
+    return r;
+}
+
+IslandSolve finish(World& world, const PgsResult& r) {
     if (!r.converged) {
         ++world.work.unconverged_islands;
     }
@@ -92,6 +95,30 @@ IslandSolve solve_by_mprgp(World& world, IslandProblem& p, double tolerance, int
     result.converged = r.converged;
     result.residual = r.residual;
     return result;
+}
+
+int product_cap(const World& world, int cap_factor) {
+    return cap_factor * iterative_products_per_search_iteration *
+           world.solver.max_search_iterations;
+}
+
+IslandSolve solve_by_mprgp(World& world, IslandProblem& p, double tolerance, int cap_factor) {
+    return finish(world, run_mprgp(world, p, tolerance, product_cap(world, cap_factor)));
+}
+
+// MPRGP to the tight tolerance within its budget, then on from that answer
+// (a warm start that already meets the relaxed tolerance costs one product).
+IslandSolve solve_by_mprgp(World& world, IslandProblem& p, const RelaxingTolerance& tolerance) {
+    const int cap = product_cap(world, 1);
+    if (!(tolerance.relaxed > tolerance.tight)) {
+        return finish(world, run_mprgp(world, p, tolerance.tight, cap));
+    }
+    const PgsResult tight =
+        run_mprgp(world, p, tolerance.tight, std::min(tolerance.relax_after, cap));
+    if (tight.converged || tight.sweeps >= cap) {
+        return finish(world, tight);
+    }
+    return finish(world, run_mprgp(world, p, tolerance.relaxed, cap - tight.sweeps));
 }
 
 } // namespace
@@ -111,6 +138,13 @@ IslandSolve solve_island(World& world, IslandProblem& problem, double tolerance,
         return solve_iteratively(world, problem, tolerance);
     }
     return solve_by_mprgp(world, problem, tolerance, cap_factor);
+}
+
+IslandSolve solve_island(World& world, IslandProblem& problem, const RelaxingTolerance& tolerance) {
+    if (problem.points.size() <= direct_solve_points || iterative_solver == IterativeSolver::pgs) {
+        return solve_island(world, problem, tolerance.tight);
+    }
+    return solve_by_mprgp(world, problem, tolerance);
 }
 
 } // namespace impulse
