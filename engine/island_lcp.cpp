@@ -83,12 +83,13 @@ IslandSolve solve_by_mprgp(World& world, IslandProblem& p, double tolerance, int
     settings.tolerance = tolerance;
     settings.max_sweeps =
         cap_factor * iterative_products_per_search_iteration * world.solver.max_search_iterations;
-    const PgsResult r = solve_mprgp(world, p.points, p.q, p.lambda, settings, p.mprgp);
+    const MprgpResult r = solve_mprgp(world, p.points, p.q, p.lambda, settings, p.mprgp);
     world.work.solver_sweeps += r.sweeps;
     if (!r.converged) {
         ++world.work.unconverged_islands;
     }
     IslandSolve result;
+    result.solved = !r.unbounded; // no solution, as the pivoting solver's failure says
     result.converged = r.converged;
     result.residual = r.residual;
     return result;
