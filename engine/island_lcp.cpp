@@ -78,20 +78,21 @@ IslandSolve solve_iteratively(World& world, IslandProblem& p, double tolerance) 
 // MPRGP (mprgp.h), warm started from problem.lambda: about sqrt(cond A)
 // products where Gauss-Seidel needs about cond A sweeps, so a tall column
 // converges cold within the cap and a settled pile in one product.
-PgsResult run_mprgp(World& world, IslandProblem& p, double tolerance, int max_products) {
+MprgpResult run_mprgp(World& world, IslandProblem& p, double tolerance, int max_products) {
     PgsSettings settings;
     settings.tolerance = tolerance;
     settings.max_sweeps = max_products;
-    const PgsResult r = solve_mprgp(world, p.points, p.q, p.lambda, settings, p.mprgp);
+    const MprgpResult r = solve_mprgp(world, p.points, p.q, p.lambda, settings, p.mprgp);
     world.work.solver_sweeps += r.sweeps;
     return r;
 }
 
-IslandSolve finish(World& world, const PgsResult& r) {
+IslandSolve finish(World& world, const MprgpResult& r) {
     if (!r.converged) {
         ++world.work.unconverged_islands;
     }
     IslandSolve result;
+    result.solved = !r.unbounded; // no solution, as the pivoting solver's failure says
     result.converged = r.converged;
     result.residual = r.residual;
     return result;
@@ -113,9 +114,9 @@ IslandSolve solve_by_mprgp(World& world, IslandProblem& p, const RelaxingToleran
     if (!(tolerance.relaxed > tolerance.tight)) {
         return finish(world, run_mprgp(world, p, tolerance.tight, cap));
     }
-    const PgsResult tight =
+    const MprgpResult tight =
         run_mprgp(world, p, tolerance.tight, std::min(tolerance.relax_after, cap));
-    if (tight.converged || tight.sweeps >= cap) {
+    if (tight.converged || tight.unbounded || tight.sweeps >= cap) {
         return finish(world, tight);
     }
     return finish(world, run_mprgp(world, p, tolerance.relaxed, cap - tight.sweeps));

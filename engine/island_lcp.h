@@ -26,7 +26,8 @@ inline constexpr IterativeSolver iterative_solver = IterativeSolver::mprgp;
 inline constexpr int iterative_products_per_search_iteration = 10;
 
 struct IslandSolve {
-    bool solved = true;    // false: the pivoting solver found no solution
+    bool solved = true;    // false: the pivoting solver found no solution, or MPRGP found
+                           // the problem unbounded (no solution either, mprgp.h)
     bool converged = true; // false: the sweep cap stopped the iterative solver
     double residual = 0.0; // the iterative solver's last residual
 };

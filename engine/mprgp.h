@@ -48,9 +48,24 @@ struct MprgpScratch {
     std::vector<double> dv_x;       // per slot: M^-1 J^T x of the vector a product takes
     std::vector<double> dv_y;
     std::vector<double> dw;
-    std::vector<double> gradient;  // per point: w = A lambda + q
-    std::vector<double> direction; // per point: the search direction p
-    std::vector<double> product;   // per point: A p
+    std::vector<double> gradient;      // per point: w = A lambda + q
+    std::vector<double> direction;     // per point: the search direction p
+    std::vector<double> product;       // per point: A p
+    std::vector<double> ray;           // per point: min(p, 0), a candidate unbounded ray
+    std::vector<double> ray_product;   // per point: A ray
+    std::vector<double> ray_residual;  // per point: refining the ray (mprgp.cpp, refine_ray)
+    std::vector<double> ray_direction; // per point: the same
+    std::vector<double> ray_direction_product; // per point: A ray_direction
+    std::vector<double> anchor_mu;             // per point: mu at the cycle test's anchor
+    std::vector<double> anchor_gradient;       // per point: the gradient there
+};
+
+// solve_pgs's result, and whether the problem has no solution.
+struct MprgpResult : PgsResult {
+    // A ray the iteration was about to step along proved the QP unbounded
+    // below (the LCP without a solution; solve_mprgp). converged is then
+    // false, lambda the last iterate (finite, no answer) and residual its.
+    bool unbounded = false;
 };
 
 // The contract of solve_pgs: points' a and b are world body indices (their
@@ -89,9 +104,23 @@ struct MprgpScratch {
 // many): a direction of zero curvature takes the step to the bound, or a
 // projected gradient step, so nothing divides by zero and no regularisation
 // is added. A point between static bodies only (A_ii = 0) is left unscaled.
+//
+// Unbounded problems (docs/engine.md, "The island solver"): no lambda meets
+// the conditions when a ray y >= 0 has A y = 0 and q.y < 0 (a slab pressed
+// between two walls of opposite normals deeper than its slot). The
+// iteration stops with `unbounded` set, instead of running the impulses
+// towards infinity to the cap, when a ray that raises impulses only has
+// curvature within the rounding of its own computation ((2 n + 8) eps B
+// |y|^2, B the bound above) and descends faster than the tolerance forgives.
+// The rays tried: a step's direction with no bound ahead, as it comes;
+// directions nearly so, and the impulses' growth since the products 1, 2, 4,
+// 8, ..., each projected onto A's null space first (a few more products,
+// spent only where a cheap gate passes). A solvable problem passes only if
+// its solutions are beyond what the rounding lets the iteration compute.
+//
 // Deterministic: fixed order, only + - * / sqrt, no threads.
-PgsResult solve_mprgp(const World& world, const std::vector<ContactPoint>& points,
-                      const std::vector<double>& q, std::vector<double>& lambda,
-                      const PgsSettings& settings, MprgpScratch& scratch);
+MprgpResult solve_mprgp(const World& world, const std::vector<ContactPoint>& points,
+                        const std::vector<double>& q, std::vector<double>& lambda,
+                        const PgsSettings& settings, MprgpScratch& scratch);
 
 } // namespace impulse
