@@ -91,9 +91,12 @@ ContactPoint candidate_point(const World& world, int pair, int a, int b, const C
 namespace {
 
 // Body i's pose and its box grown by `grow` (its reach), the contact
-// tolerance and the rounding of its corners.
+// tolerance and the rounding of its corners; its reach and state recorded as
+// what the pairs cover.
 void box_body(const World& world, std::size_t i, double grow, TimeSteppingScratch& s) {
     const Body& body = world.bodies[i];
+    s.reach[i] = grow;
+    s.paired_at[i] = body.state;
     s.poses[i] = transform_of(body.state);
     const double margin = grow + world.solver.contact_tolerance +
                           rounding_margin(s.poses[i], body.shape, rotation_radius(body.shape));
@@ -107,6 +110,7 @@ void find_pairs_around(World& world, double grow, TimeSteppingScratch& s) {
     s.poses.resize(n);
     s.boxes.resize(n);
     s.reach.resize(n);
+    s.paired_at.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
         box_body(world, i, world.bodies[i].is_static() ? 0.0 : grow, s);
     }
@@ -117,10 +121,10 @@ void find_contact_candidates(World& world, double h, TimeSteppingScratch& s) {
     const std::size_t n = world.bodies.size();
     s.poses.resize(n);
     s.reach.resize(n);
+    s.paired_at.resize(n);
     s.boxes.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-        s.reach[i] = std::max(body_reach(world, world.bodies[i], h), s.reach_floor[i]);
-        box_body(world, i, s.reach[i], s);
+        box_body(world, i, std::max(body_reach(world, world.bodies[i], h), s.reach_floor[i]), s);
     }
     find_pairs(world, s);
 

@@ -23,8 +23,9 @@ void find_contact_candidates(World& world, double h, TimeSteppingScratch& s);
 
 // The overlap guard's pairs when its moves carried a body past its reach: at
 // the bodies' current poses, every pair whose boxes, each dynamic body's
-// grown by `grow`, overlap; refills s.poses, s.boxes and s.pairs (sorted by
-// (a, b)) and leaves s.points as they were.
+// grown by `grow`, overlap; refills s.poses, s.boxes, s.pairs (sorted by
+// (a, b)) and what they cover (s.reach, `grow` for each dynamic body, and
+// s.paired_at), and leaves s.points as they were.
 void find_pairs_around(World& world, double grow, TimeSteppingScratch& s);
 
 // Body b's box over a step from `start` to its current state: its boxes at

@@ -80,6 +80,10 @@ struct TimeSteppingScratch {
     std::vector<BodyState> free_end; // free flight by the scene's integrator
     std::vector<Transform> poses;    // per body, at the configuration being looked at
     std::vector<double> reach;       // per body: how far any of its points moves in the step
+    // Per body: its state when s.pairs were found; with s.reach, what the
+    // pairs cover (a body within its reach of it meets no body it has no
+    // pair with).
+    std::vector<BodyState> paired_at;
     std::vector<double> reach_floor; // per body: at least this (a retried step's lesson)
     std::vector<Aabb> boxes;
     // The bodies that ended an attempt further from their start than their

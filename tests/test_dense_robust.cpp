@@ -209,17 +209,12 @@ TEST_CASE("a box turned across a slot narrower than itself goes back to the step
                     static_body(make_box(0.5, 1.0), {0.5 * slot + 0.5, 0.0}),
                     dynamic_body(make_box(0.1, 0.2), 2.0, {0.0, 0.0}, 0.0, {0.0, -1.0}, 3.0)},
                    {0.0, -9.81}, 0.5, time_stepping());
-    TimeSteppingScratch s;
-    for (const Body& b : world.bodies) {
-        s.start.push_back(b.state);
-        s.poses.push_back(transform_of(b.state));
-    }
+    TimeSteppingScratch s = guard_scratch(world, {{2, 0, 0.1}, {2, 1, 0.1}});
     BodyState& box = world.bodies[2].state;
     box.angle = 0.5 * 3.141592653589793;
     box.position.y = -1.0 / 30.0;
     s.reach.assign(3, 0.1);
     s.in_island.assign(3, 0);
-    s.pairs = {{2, 0, 0.1}, {2, 1, 0.1}};
     guard_overlaps(world, h, s);
     guard_energy(world, s);
     CHECK(world.work.overlap_guard_returned == 1);

@@ -181,3 +181,35 @@ TEST_CASE("the overlap guard finds the pairs again when the step's retries ran o
     CHECK(untold.bodies[0].state.position.x == 0.0);
     CHECK(untold.work.overlap_guard_passes == 0);
 }
+
+TEST_CASE("pairs found again cover only their grow around the poses they were found at",
+          "[overlap-guard]") {
+    // Three unit-mass discs of r = 0.1 m in a row: A 2 cm into B, C 5 mm
+    // beyond B, and no candidate pair (the step's retries ran out). Found
+    // again around the end poses, the pairs hold A and B but not B and C, far
+    // more than d apart. Equal masses share the separating move, so B goes
+    // 1 cm towards C, 5 mm into it, yet stays well within the 1 m the step
+    // had reached from its start: measured from the start, nothing outran the
+    // pairs. Measured from where they were found, B went 1 cm past their d,
+    // and the pairs found again around B hold C, which the passes move on.
+    const double r = 0.1;
+    const double into = 0.02;
+    const double beyond_b = 5e-3;
+    World world = make_world({dynamic_body(make_circle(r), 1.0, {0.0, 0.0}),
+                              dynamic_body(make_circle(r), 1.0, {2.0 * r - into, 0.0}),
+                              dynamic_body(make_circle(r), 1.0, {4.0 * r - into + beyond_b, 0.0})},
+                             {0.0, 0.0}, 0.5, time_stepping());
+    const double d = world.solver.contact_tolerance;
+    TimeSteppingScratch s = test::guard_scratch(world, {});
+    s.reach.assign(world.bodies.size(), 1.0);
+    guard_overlaps(world, 1.0 / 60.0, s, true);
+    const auto gap = [&world, r](std::size_t i, std::size_t k) {
+        return world.bodies[k].state.position.x - world.bodies[i].state.position.x - 2.0 * r;
+    };
+    CHECK(world.work.overlap_guard_pair_rebuilds >= 2); // the stale pairs', then B's move's
+    CHECK(gap(0, 1) >= -d);
+    CHECK(gap(1, 2) >= -d);
+    for (const char stuck : s.guard_stuck) {
+        CHECK(stuck == 0); // separated by the passes, not left to the energy guard
+    }
+}

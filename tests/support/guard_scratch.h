@@ -19,6 +19,7 @@ inline TimeSteppingScratch guard_scratch(const World& world, std::vector<Candida
         s.poses.push_back(transform_of(b.state));
     }
     s.reach.assign(world.bodies.size(), 0.0);
+    s.paired_at = s.start;
     s.pairs = std::move(pairs);
     return s;
 }
