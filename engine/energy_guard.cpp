@@ -1,5 +1,8 @@
 #include "energy_guard.h"
 
+#include "contact_candidates.h"
+#include "manifold.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -51,6 +54,12 @@ bool stuck(const TimeSteppingScratch& s, const std::vector<int>& bodies, int b0,
     return false;
 }
 
+// Body b back at its pose at the step's start, at rest, marked in s.returned.
+void return_to_start(World& world, TimeSteppingScratch& s, std::size_t b) {
+    world.bodies[b].state = {s.start[b].position, s.start[b].angle, {}, 0.0};
+    s.returned[b] = 1;
+}
+
 // Checks the bodies bodies[b0 .. b1) together: if their energy rose beyond
 // rounding from s.start to now, their velocities are scaled down to take the
 // rise out, or, when their kinetic energy cannot pay for it, they go back to
@@ -62,8 +71,8 @@ void check_bodies(World& world, TimeSteppingScratch& s, const std::vector<int>& 
         // mark_stuck): the unit goes back to x_k, at rest, whatever its energy.
         ++world.work.overlap_guard_returned;
         for (int k = b0; k < b1; ++k) {
-            const std::size_t b = static_cast<std::size_t>(bodies[static_cast<std::size_t>(k)]);
-            world.bodies[b].state = {s.start[b].position, s.start[b].angle, {}, 0.0};
+            return_to_start(world, s,
+                            static_cast<std::size_t>(bodies[static_cast<std::size_t>(k)]));
         }
         return;
     }
@@ -91,13 +100,57 @@ void check_bodies(World& world, TimeSteppingScratch& s, const std::vector<int>& 
             // Kinetic energy cannot pay for the rise (a near-rest island
             // the overlap guard lifted): the bodies stay at x_k, whose
             // energy is at most E_k, at rest. x_k kept its overlaps within
-            // the previous step's guard, and the bodies stayed inside reach
-            // boxes no other body's box met.
+            // the previous step's guard; a body that has since moved there
+            // is sent back too (return_units_met). The velocities are
+            // scaled by 0 below, so their zeros keep their signs.
             state.position = s.start[b].position;
             state.angle = s.start[b].angle;
+            s.returned[b] = 1;
         }
         state.velocity = factor * state.velocity;
         state.angular_velocity = factor * state.angular_velocity;
+    }
+}
+
+// A unit sent back to x_k is clear of every body that stayed within the
+// reach its step's pairs were found for: their boxes at the step's start did
+// not meet, or the pair's points were farther apart than both reaches. A body
+// that outran them (a stale step's, or one the overlap guard carried past
+// them) may since stand where the unit was, and the unit, sent back, would
+// overlap it unseen. So in a step whose overlap guard found its pairs again
+// (s.pairs_refound: only then can a body have outrun them), when a unit went
+// back, the pairs of the poses as they now are are found, and every unit met
+// deeper than d by one that went back goes back as well, at rest (its energy
+// P(x_k) <= E_k), until none is: at most once per unit, and x_k is the
+// previous step's end, within d everywhere.
+void return_units_met(World& world, TimeSteppingScratch& s) {
+    const std::vector<int>& unit = s.guard_joined; // every entry its root
+    const std::size_t n = world.bodies.size();
+    const double d = world.solver.contact_tolerance;
+    std::vector<int>& goes_back = s.energy_check; // per unit's root (reused)
+    bool met =
+        s.pairs_refound && std::find(s.returned.begin(), s.returned.end(), 1) != s.returned.end();
+    while (met) {
+        met = false;
+        goes_back.assign(n, 0);
+        find_pairs_around(world, 0.0, s);
+        for (const CandidatePair& pair : s.pairs) {
+            const std::size_t a = static_cast<std::size_t>(pair.a);
+            const std::size_t b = static_cast<std::size_t>(pair.b);
+            const std::size_t other = s.returned[a] != 0 ? b : a;
+            if (s.returned[a] != s.returned[b] && !world.bodies[other].is_static() &&
+                separation(world.bodies[a].shape, s.poses[a], world.bodies[b].shape, s.poses[b]) <
+                    -d) {
+                goes_back[static_cast<std::size_t>(unit[other])] = 1;
+                met = true;
+            }
+        }
+        world.work.returned_units_met += std::count(goes_back.begin(), goes_back.end(), 1);
+        for (std::size_t k = 0; k < n; ++k) {
+            if (goes_back[static_cast<std::size_t>(unit[k])] != 0 && !world.bodies[k].is_static()) {
+                return_to_start(world, s, k);
+            }
+        }
     }
 }
 
@@ -117,6 +170,7 @@ void guard_energy(World& world, TimeSteppingScratch& s) {
         std::iota(parent.begin(), parent.end(), 0);
     }
     s.energy_check.assign(n, 0); // per body: to be checked
+    s.returned.assign(n, 0);
     for (int i = 0; i < s.islands.count(); ++i) {
         const int b0 = s.islands.body_offsets[static_cast<std::size_t>(i)];
         const int b1 = s.islands.body_offsets[static_cast<std::size_t>(i) + 1];
@@ -161,6 +215,7 @@ void guard_energy(World& world, TimeSteppingScratch& s) {
         check_bodies(world, s, s.energy_units, static_cast<int>(u), static_cast<int>(end));
         u = end;
     }
+    return_units_met(world, s);
 }
 
 } // namespace impulse

@@ -430,6 +430,7 @@ void guard_overlaps(World& world, double h, TimeSteppingScratch& s, bool pairs_s
     std::iota(s.guard_joined.begin(), s.guard_joined.end(), 0);
     s.guard_saved.resize(world.bodies.size());
     s.guard_stuck.assign(world.bodies.size(), 0);
+    s.pairs_refound = pairs_stale;
     if (pairs_stale) {
         ++world.work.overlap_guard_pair_rebuilds;
         find_pairs_around(world, world.solver.contact_tolerance, s);
@@ -450,6 +451,7 @@ void guard_overlaps(World& world, double h, TimeSteppingScratch& s, bool pairs_s
             break;
         }
         ++world.work.overlap_guard_pair_rebuilds;
+        s.pairs_refound = true;
         find_pairs_around(world, 2.0 * beyond + world.solver.contact_tolerance, s);
         within = rebuild < max_pair_rebuilds
                      ? run_passes(world, h, s, false)

@@ -117,6 +117,10 @@ struct TimeSteppingScratch {
     // together, which the energy guard checks with each other's islands.
     std::vector<int> guard_joined;
     std::vector<int> energy_units; // the energy guard's bodies, grouped by unit
+    std::vector<char> returned;    // per body: the energy guard sent it back to x_k
+    // The overlap guard found its pairs again this step: some body went
+    // beyond what the step's candidate pairs cover.
+    bool pairs_refound = false;
     IslandProblem problem;
     std::vector<double> pair_gap; // the overlap guard's separation of each candidate pair
     // The overlap guard's groups: candidate pairs within contact_tolerance

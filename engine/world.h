@@ -56,6 +56,9 @@ struct WorkCounters {
     // Energy-guard units sent back to x_k, at rest: the overlap guard left a
     // pair of them deeper than contact_tolerance (overlap_guard.cpp).
     long long overlap_guard_returned = 0;
+    // Units sent back to x_k, at rest, because a unit sent back there met
+    // them deeper than contact_tolerance (energy_guard.cpp).
+    long long returned_units_met = 0;
     long long reach_retries = 0; // steps taken again because an impact outran a reach
     // resting_method automatic: the index of the first step taken by
     // time-stepping (steps before it were events), or -1 while events carry the scene.

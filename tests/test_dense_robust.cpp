@@ -227,6 +227,44 @@ TEST_CASE("a box turned across a slot narrower than itself goes back to the step
     CHECK(deepest_pair(world, s) == 0.0); // upright, 5 cm from each wall
 }
 
+TEST_CASE("a unit sent back to the step's start sends back the bodies that moved into its place",
+          "[dense-robust]") {
+    // Discs of r = 0.1 m, no gravity. A, which the overlap guard marked
+    // stuck, goes back to its start at the origin. B moved this step from
+    // x = 0.5 into A's place (to x = 0.15), outrunning its pairs, so nothing
+    // checked it; D moved from x = 2 into B's place (x = 0.6). A back at the
+    // origin meets B 5 cm deep, so B goes back to x = 0.5, where it meets D:
+    // D goes back too. C, moving but clear of everyone's start, keeps its
+    // state. Every body sent back is at rest, so no energy is gained.
+    const double r = 0.1;
+    World world = make_world({dynamic_body(make_circle(r), 1.0, {0.0, 0.0}),
+                              dynamic_body(make_circle(r), 1.0, {0.5, 0.0}),
+                              dynamic_body(make_circle(r), 1.0, {3.0, 0.0}),
+                              dynamic_body(make_circle(r), 1.0, {2.0, 0.0})},
+                             {0.0, 0.0}, 0.5, time_stepping());
+    TimeSteppingScratch s = guard_scratch(world, {});
+    const Vec2 now[] = {{1.0, 0.0}, {0.15, 0.0}, {3.0, 0.0}, {0.6, 0.0}};
+    for (std::size_t i = 0; i < 4; ++i) {
+        world.bodies[i].state.position = now[i];
+        world.bodies[i].state.velocity = {-1.0, 0.0};
+    }
+    s.in_island.assign(4, 0);
+    s.guard_moved.assign(4, 0);
+    s.guard_stuck = {1, 0, 0, 0};
+    s.guard_joined = {0, 1, 2, 3};
+    s.pairs_refound = true; // a stale step: B and D outran its pairs
+    guard_energy(world, s);
+    const double start_x[] = {0.0, 0.5, 3.0, 2.0};
+    for (const std::size_t i : {0, 1, 3}) {
+        CHECK(world.bodies[i].state.position.x == start_x[i]);
+        CHECK(world.bodies[i].state.velocity.x == 0.0);
+    }
+    CHECK(world.bodies[2].state.position.x == 3.0);
+    CHECK(world.bodies[2].state.velocity.x == -1.0);
+    CHECK(world.work.overlap_guard_returned == 1);
+    CHECK(world.work.returned_units_met == 2);
+}
+
 TEST_CASE("random piles on pegs end every step within 1e-6 m, through the real binary",
           "[dense-robust]") {
     // tests/scenes: pile-on-pegs (an outside campaign's pile of 80 boxes of 1
