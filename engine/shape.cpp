@@ -1,5 +1,8 @@
 #include "shape.h"
 
+#include <algorithm>
+#include <limits>
+
 namespace impulse {
 
 namespace {
@@ -68,6 +71,21 @@ MassProperties mass_properties(const Shape& shape) {
     // Parallel-axis theorem moves the moment from the fan's origin to the centroid.
     mp.inertia_per_unit_mass = second_moment / area - length_squared(centroid_from_origin);
     return mp;
+}
+
+double inradius(const Shape& shape) {
+    if (shape.type == ShapeType::circle) {
+        return shape.radius;
+    }
+    // The polygon is the intersection of its edges' half-planes, each
+    // dot(n_i, v_i) from the centre (the harness centres every shape on its
+    // centroid).
+    double r = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < shape.polygon.count; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        r = std::min(r, dot(shape.polygon.normals[k], shape.polygon.vertices[k]));
+    }
+    return r;
 }
 
 } // namespace impulse

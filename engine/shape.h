@@ -40,6 +40,13 @@ Shape make_polygon(const Vec2* vertices, int count);
 
 MassProperties mass_properties(const Shape& shape);
 
+// r of the disc about the centre that the shape contains, half its thinnest
+// thickness: the radius of a circle, a polygon's smallest distance from its
+// centre to an edge's line (shapes are centred on their centroid). Two bodies
+// cannot pass through each other within a step unless they move at least the
+// sum of their inradii, doubled, relative to each other.
+double inradius(const Shape& shape);
+
 // Twice the signed area of the triangle (a, b, c): positive when counter-clockwise.
 constexpr double twice_signed_area(Vec2 a, Vec2 b, Vec2 c) {
     return cross(b - a, c - a);

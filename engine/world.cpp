@@ -1,12 +1,15 @@
 #include "world.h"
 
 #include "configuration.h"
+#include "contact_candidates.h"
 #include "contact_simultaneous.h"
 #include "contact_single.h"
 #include "continuous_collision.h"
 #include "local_stepping.h"
 #include "time_of_impact.h"
 #include "time_stepping.h"
+
+#include <cmath>
 
 namespace impulse {
 
@@ -162,11 +165,44 @@ std::optional<StepError> step_by_time_stepping(World& world, double t0, double d
     return step_time_stepping(world, t0, dt, events);
 }
 
-// automatic: events while they carry the scene; a step they cannot finish is
-// redone from its start by time-stepping, which then carries the rest.
+// true when some pair may move through each other within the next step,
+// which the events model, testing overlap only at a step's end, would not
+// see (docs/engine.md, "Dense contact", automatic): the pair's closing speed bounded from
+// its velocities now, the turning of its farthest points and, against a
+// static body, what gravity adds within the step, moves it at least the sum
+// of its two thicknesses (twice the inradii), and the pair is near enough to
+// meet within the step. Collisions within the step can speed a body up; the
+// next step's check sees that speed.
+bool could_pass_through(const World& world, double dt) {
+    for (const Pair& pair : world.pairs) {
+        const Body& a = world.bodies[static_cast<std::size_t>(pair.a)];
+        const Body& b = world.bodies[static_cast<std::size_t>(pair.b)];
+        const double ra = rotation_radius(a.shape);
+        const double rb = rotation_radius(b.shape);
+        const double fall = a.is_static() != b.is_static() ? length(world.gravity) * dt : 0.0;
+        const double closing = length(a.state.velocity - b.state.velocity) +
+                               ra * std::abs(a.state.angular_velocity) +
+                               rb * std::abs(b.state.angular_velocity) + fall;
+        const bool thick = closing * dt < 2.0 * (inradius(a.shape) + inradius(b.shape));
+        const bool apart = length(a.state.position - b.state.position) - ra - rb > closing * dt;
+        if (!thick && !apart) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// automatic: events while they carry the scene; a step they cannot finish, or
+// one in which a pair could pass through unseen, is taken by time-stepping
+// (whose candidate points cover the step's whole motion), which then carries
+// the rest.
 std::optional<StepError> step_automatic(World& world, double t0, double dt,
                                         std::vector<CollisionEvent>& events) {
     if (world.work.time_stepping_from_step >= 0 || starts_in_time_stepping(world)) {
+        return step_by_time_stepping(world, t0, dt, events);
+    }
+    if (!world.solver.ccd && could_pass_through(world, dt)) {
+        world.work.time_stepping_for_speed = 1;
         return step_by_time_stepping(world, t0, dt, events);
     }
     const Configuration start = configuration_of(world);

@@ -63,6 +63,9 @@ struct WorkCounters {
     // resting_method automatic: the index of the first step taken by
     // time-stepping (steps before it were events), or -1 while events carry the scene.
     long long time_stepping_from_step = -1;
+    // 1 when that switch was made because a pair could pass through each other
+    // within the step (world.cpp, could_pass_through), 0 when events failed.
+    long long time_stepping_for_speed = 0;
 };
 
 // Scratch memory of local stepping, kept between steps so a step allocates nothing.

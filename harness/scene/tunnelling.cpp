@@ -153,11 +153,11 @@ TunnellingRefusal refusal(const Scene& scene, std::size_t fast, std::size_t slow
                                                  " m/s at t = 0, and gravity adds up to " +
                                                  short_number(gain) + " m/s)"
                                            : " at t = 0";
-    // A resting scene reaching here runs events (time-stepping is exempt), and
-    // time-stepping is one more cure for it.
-    const std::string settings = scene.solver.resting
-                                     ? "\"ccd\": true or \"resting_method\": \"time-stepping\""
-                                     : "\"ccd\": true";
+    // A resting scene reaching here asked for events (time-stepping and "auto"
+    // are exempt), and either of those is one more cure for it.
+    const std::string settings =
+        scene.solver.resting ? "\"ccd\": true or \"resting_method\": \"auto\" or \"time-stepping\""
+                             : "\"ccd\": true";
     const std::string cure =
         scene.solver.stepping == Stepping::local
             ? "use dt below " + short_number(safe_dt) + " s (ccd needs \"stepping\": \"world\")"
@@ -176,30 +176,19 @@ TunnellingRefusal refusal(const Scene& scene, std::size_t fast, std::size_t slow
 
 } // namespace
 
-double inradius(const Shape& shape) {
-    if (shape.type == ShapeType::circle) {
-        return shape.radius;
-    }
-    // The polygon is the intersection of its edges' half-planes, each
-    // dot(n_i, v_i) from the centre (shapes are centred on it: scene.h).
-    double r = infinity;
-    for (int i = 0; i < shape.polygon.count; ++i) {
-        const auto k = static_cast<std::size_t>(i);
-        r = std::min(r, dot(shape.polygon.normals[k], shape.polygon.vertices[k]));
-    }
-    return r;
-}
-
 std::optional<TunnellingRefusal> tunnelling_refusal(const Scene& scene) {
     // Time-stepping contact does not test pairs only at the ends of a step: each
     // step takes a contact point for every pair whose boxes, grown by the
     // step's whole motion (the union of the boxes at both ends, plus the
     // turning reach), overlap, and the contact problem then forbids passing
     // through. Its candidates cover the swept motion as ccd does, so nothing
-    // here applies. Only what is known at load counts: "auto" with world
-    // stepping and at most 16 dynamic bodies may run events, which do tunnel;
-    // with more it starts in time-stepping, as the engine does.
-    if (scene.solver.ccd || time_stepping_from_start(scene)) {
+    // here applies. "auto" runs events only in steps where no pair could pass
+    // through: before a step where one could, the engine takes time-stepping
+    // (world.cpp, could_pass_through), so only "events" and scenes without
+    // resting contact are refused here.
+    const bool automatic =
+        scene.solver.resting && scene.solver.resting_method == RestingMethod::automatic;
+    if (scene.solver.ccd || automatic || time_stepping_from_start(scene)) {
         return std::nullopt;
     }
     const std::vector<Reach> reach = reaches_of(scene);

@@ -29,15 +29,13 @@ struct TunnellingRefusal {
     std::string message; // one sentence naming both bodies, the speeds, the safe dt and the cure
 };
 
-// Empty when solver.ccd is on or no pair can close faster than its thicknesses per step.
+// Empty when solver.ccd is on, when resting contact is time-stepping or "auto"
+// (the engine takes time-stepping for any step where a pair could pass
+// through), or when no pair can close faster than its thicknesses per step.
 std::optional<TunnellingRefusal> tunnelling_refusal(const Scene& scene);
 
 // Throws InputError (the scene file, the faster body's path, the sentence)
 // when tunnelling_refusal finds a pair.
 void refuse_tunnelling(const Scene& scene);
-
-// r of the disc about the centre that the shape contains: the radius of a
-// circle, a polygon's smallest distance from its centre to an edge's line.
-double inradius(const Shape& shape);
 
 } // namespace impulse::harness

@@ -271,7 +271,11 @@ class ImpulseSimulator final : public Simulator {
                            ": \"resting_method\": \"auto\" switched from events to "
                            "time-stepping at t = " +
                            format_double(t) +
-                           " s, where the event model could not go on, and keeps it to the end; "
+                           (world_.work.time_stepping_for_speed != 0
+                                ? " s, where two bodies could pass through each other within "
+                                  "one step unseen by the event model, and keeps it to the end; "
+                                : " s, where the event model could not go on, and keeps it to "
+                                  "the end; ") +
                            "set \"resting_method\": \"time-stepping\" to use it from the start, "
                            "or \"events\" to stop there instead\n";
         if (::isatty(STDERR_FILENO) != 0) {
