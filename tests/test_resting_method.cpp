@@ -502,4 +502,22 @@ TEST_CASE("auto takes time-stepping for a step in which a pair could pass throug
     }
     CHECK(world.bodies[1].state.position.y < -10.0); // about 2.15 - 20 - 9.81 / 2 m
     CHECK(world.work.collisions == 0);
+
+    // Through the tool: the same scene runs, and the switch is noted once,
+    // naming why and ccd as the way to keep the event model.
+    const TempDir tmp;
+    const fs::path scene = tmp.dir / "plate.json";
+    spit(scene, R"({"schema":"impulse/scene@1","name":"plate","dt":0.016666666666666666,)"
+                R"("duration":1,"restitution":0,"solver":{"resting":true},"bodies":[)"
+                R"({"name":"plate","static":true,"shape":{"box":[1,0.01]},"position":[0,-0.01]},)"
+                R"({"name":"disc","shape":{"circle":0.05},"mass":1,"position":[0,2.15],)"
+                R"("velocity":[0,-20]}]})");
+    const Outcome o = run_tool({"run", scene.string(), "--out", (tmp.dir / "out.json").string()});
+    INFO(o.err);
+    CHECK(o.exit_code == 0);
+    CHECK(o.err.rfind("note: " + scene.string() + R"(: "resting_method": "auto" switched)", 0) ==
+          0);
+    CHECK(o.err.find('\n') == o.err.size() - 1); // once
+    CHECK(has(o.err, "could pass through each other within one step"));
+    CHECK(has(o.err, R"(set "ccd": true to keep the event model)"));
 }

@@ -267,17 +267,20 @@ class ImpulseSimulator final : public Simulator {
     // error only, so no output file and no stdout changes; on a terminal the
     // progress bar's line is erased first (it is redrawn below).
     void note_switch(double t) const {
-        std::string text = "note: " + scene_.file +
-                           ": \"resting_method\": \"auto\" switched from events to "
-                           "time-stepping at t = " +
-                           format_double(t) +
-                           (world_.work.time_stepping_for_speed != 0
-                                ? " s, where two bodies could pass through each other within "
-                                  "one step unseen by the event model, and keeps it to the end; "
-                                : " s, where the event model could not go on, and keeps it to "
-                                  "the end; ") +
-                           "set \"resting_method\": \"time-stepping\" to use it from the start, "
-                           "or \"events\" to stop there instead\n";
+        // A pass-through is caught by ccd's sweeps, which keep the event
+        // model; "events" would be refused at load for it (tunnelling.h).
+        const bool speed = world_.work.time_stepping_for_speed != 0;
+        std::string text =
+            "note: " + scene_.file +
+            ": \"resting_method\": \"auto\" switched from events to time-stepping at t = " +
+            format_double(t) +
+            (speed ? " s, where two bodies could pass through each other within one step unseen "
+                     "by the event model, and keeps it to the end; set \"ccd\": true to keep the "
+                     "event model (its sweeps see such a pass), or \"resting_method\": "
+                     "\"time-stepping\" to use time-stepping from the start\n"
+                   : " s, where the event model could not go on, and keeps it to the end; set "
+                     "\"resting_method\": \"time-stepping\" to use it from the start, or "
+                     "\"events\" to stop there instead\n");
         if (::isatty(STDERR_FILENO) != 0) {
             text = "\r\x1b[K" + text;
         }
