@@ -6,6 +6,7 @@
 #include "contact_single.h"
 #include "continuous_collision.h"
 #include "local_stepping.h"
+#include "manifold.h"
 #include "time_of_impact.h"
 #include "time_stepping.h"
 
@@ -170,9 +171,9 @@ std::optional<StepError> step_by_time_stepping(World& world, double t0, double d
 // see (docs/engine.md, "Dense contact", automatic): the pair's closing speed bounded from
 // its velocities now, the turning of its farthest points and, against a
 // static body, what gravity adds within the step, moves it at least the sum
-// of its two thicknesses (twice the inradii), and the pair is near enough to
-// meet within the step. Collisions within the step can speed a body up; the
-// next step's check sees that speed.
+// of its two thicknesses (twice the inradii), and its separation now is
+// within that travel, so it can meet within the step. Collisions within the
+// step can speed a body up; the next step's check sees that speed.
 bool could_pass_through(const World& world, double dt) {
     for (const Pair& pair : world.pairs) {
         const Body& a = world.bodies[static_cast<std::size_t>(pair.a)];
@@ -183,10 +184,13 @@ bool could_pass_through(const World& world, double dt) {
         const double closing = length(a.state.velocity - b.state.velocity) +
                                ra * std::abs(a.state.angular_velocity) +
                                rb * std::abs(b.state.angular_velocity) + fall;
-        const bool thick = closing * dt < 2.0 * (inradius(a.shape) + inradius(b.shape));
-        const bool apart = length(a.state.position - b.state.position) - ra - rb > closing * dt;
-        if (!thick && !apart) {
-            return true;
+        if (closing * dt < 2.0 * (inradius(a.shape) + inradius(b.shape))) {
+            continue; // too thick to pass through within the step
+        }
+        const double gap =
+            separation(a.shape, transform_of(a.state), b.shape, transform_of(b.state));
+        if (!(gap > closing * dt)) {
+            return true; // near enough to meet within the step
         }
     }
     return false;
