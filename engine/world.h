@@ -60,6 +60,9 @@ struct WorkCounters {
     // them deeper than contact_tolerance (energy_guard.cpp).
     long long returned_units_met = 0;
     long long reach_retries = 0; // steps taken again because an impact outran a reach
+    // Holding solves taken again, tightly, because their loose answer would
+    // have carried a pair through itself (time_stepping.cpp, crossing).
+    long long holding_solved_again = 0;
     // resting_method automatic: the index of the first step taken by
     // time-stepping (steps before it were events), or -1 while events carry the scene.
     long long time_stepping_from_step = -1;
@@ -151,6 +154,8 @@ enum class StepFailure {
     contact_problem_unsolved, // contacts: simultaneous: the impulse LCP found no solution
     sweep_not_converged,      // ccd: conservative advancement needed more than
                               // solver.max_search_iterations samples
+    contact_pass_through,     // time-stepping: the holding answer carries a pair past its
+                              // gap by more than the pair is thick (a crossing)
 };
 
 struct StepError {

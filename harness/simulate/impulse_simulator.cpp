@@ -252,6 +252,13 @@ class ImpulseSimulator final : public Simulator {
             return unsolved(error.body_a >= 0 && error.body_b >= 0 ? " around " + a + " and " + b
                                                                    : std::string(),
                             at, model);
+        case StepFailure::contact_pass_through:
+            return "the contact problem of the island around " + a + " and " + b + " at " + at +
+                   " could not be solved within its product cap closely enough to keep " + a +
+                   " from closing into " + b +
+                   " by more than the two are thick, where they could "
+                   "cross unseen (docs/engine.md, \"Dense contact\"); use a smaller dt (now " +
+                   format_double(scene_.dt) + " s)";
         case StepFailure::sweep_not_converged:
             return "the swept test between " + a + " and " + b + " at " + at +
                    " needed more than " + std::to_string(scene_.solver.max_search_iterations) +
