@@ -168,6 +168,38 @@ TEST_CASE("A path that is a regular file or missing is written whole", "[unit][o
     }
 }
 
+TEST_CASE("An output whose folder is missing or is a file is refused before the run, and the "
+          "other output keeps its bytes",
+          "[unit][output-paths]") {
+    // Found by an outside review: run --out keep.json --json nodir/r.json
+    // replaced keep.json with the trajectory, then failed on --json.
+    const TempDir dir;
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
+    const std::string scene = (root / "harness" / "scenes" / "drop-box.json").string();
+    const fs::path keep = dir.dir / "keep.json", a_file = dir.dir / "a-file";
+    spit(keep, "an earlier run's bytes");
+    spit(a_file, "not a folder");
+    const std::string missing_folder = (dir.dir / "no-such-folder" / "r.json").string();
+    const std::string under_a_file = (a_file / "r.json").string();
+    for (const std::string& bad : {missing_folder, under_a_file}) {
+        for (const bool bad_is_json : {true, false}) {
+            const std::vector<std::string> args =
+                bad_is_json
+                    ? std::vector<std::string>{"run", scene, "--out", keep.string(), "--json", bad}
+                    : std::vector<std::string>{"run", scene, "--json", keep.string(), "--out", bad};
+            const Outcome o = run_tool(args);
+            INFO(o.err);
+            CHECK(o.exit_code == 2);
+            CHECK(o.err.rfind(bad + (bad_is_json ? ": --json: " : ": --out: "), 0) == 0);
+            CHECK(o.err.find("cannot be written") != std::string::npos);
+            CHECK(o.err.find('\n') == o.err.size() - 1);
+            CHECK(state_of(keep) == "file an earlier run's bytes");
+            CHECK_FALSE(fs::exists(bad));
+        }
+    }
+    CHECK(state_of(a_file) == "file not a folder");
+}
+
 TEST_CASE("The path - writes an output to standard output", "[unit][output-paths]") {
     const TempDir dir;
     const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);

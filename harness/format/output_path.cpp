@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iterator>
 #include <ostream>
+#include <unistd.h>
 
 namespace impulse::harness {
 
@@ -79,6 +80,32 @@ void refuse_protected(const std::string& option, const std::string& path, const 
     }
 }
 
+// The folder a file is written into must exist, be a folder and take new
+// files (the atomic write makes its temporary file there): checked with the
+// other outputs before the work, so a second output that cannot be written
+// never leaves the first one replaced (run --out and --json).
+void refuse_missing_folder(const std::string& option, const std::string& path) {
+    const fs::path parent = fs::path(path).parent_path();
+    const fs::path folder = parent.empty() ? fs::path(".") : parent;
+    std::error_code error;
+    const fs::file_status status = fs::status(folder, error);
+    if (!fs::exists(status)) {
+        throw InputError(path, option,
+                         "cannot be written: its folder " + printable_path(folder.string()) +
+                             " does not exist");
+    }
+    if (!fs::is_directory(status)) {
+        throw InputError(path, option,
+                         "cannot be written: " + printable_path(folder.string()) +
+                             " is not a folder");
+    }
+    if (::access(folder.c_str(), W_OK | X_OK) != 0) {
+        throw InputError(path, option,
+                         "cannot be written: the folder " + printable_path(folder.string()) +
+                             " does not let this user create files in it");
+    }
+}
+
 } // namespace
 
 bool is_standard_output(const std::string& path) {
@@ -105,6 +132,7 @@ void check_output_file(const std::string& option, const std::string& path,
                              "; impulse writes only regular files (- is standard output)");
     }
     refuse_protected(option, path, landing_place(path), protected_folders);
+    refuse_missing_folder(option, path);
 }
 
 void check_output_folder(const std::string& option, const std::string& dir,
