@@ -6,6 +6,7 @@
 #include "engine_output.h"
 #include "engine_process.h"
 #include "input_error.h"
+#include "interruption.h"
 #include "memory_budget.h"
 #include "number_format.h"
 #include "record.h"
@@ -160,6 +161,8 @@ ProcessResult run_command(const EngineSpec& engine, const Scene& received, const
     ProcessRequest request;
     request.command = engine.command;
     request.command.push_back(write_scene_file(folder.path(), received));
+    // Removed with the folder even if the harness is interrupted meanwhile.
+    const InterruptibleFolder interruptible(folder.path().string(), request.command.back());
     request.working_directory = engine.working_directory;
     request.time_limit = engine.time_limit;
     request.output_limit = static_cast<std::size_t>(trajectory_limit_bytes());

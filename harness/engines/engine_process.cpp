@@ -7,6 +7,7 @@
 #include "engine_process.h"
 
 #include "input_error.h"
+#include "interruption.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -15,6 +16,7 @@
 #include <csignal>
 #include <cstring>
 #include <fcntl.h>
+#include <optional>
 #include <poll.h>
 #include <spawn.h>
 #include <sys/stat.h>
@@ -138,7 +140,9 @@ bool read_some(Reader& reader, std::string& into) {
 class Run {
   public:
     Run(const ProcessRequest& request, pid_t pid, int out, int err)
-        : request_(request), pid_(pid), out_{out}, err_{err} {}
+        : request_(request), pid_(pid), out_{out}, err_{err} {
+        interruptible_.emplace(pid);
+    }
 
     // Waits for the engine to exit, reading its pipes, killing its group at
     // the time limit or the output limit; then kills and reaps the group.
@@ -161,6 +165,7 @@ class Run {
             }
         }
         kill_group(); // the leader is a zombie until reaped, so its group id is still its own
+        interruptible_.reset(); // before the reap frees the group id for reuse
         const int status = reap_leader();
         reaped_ = true;
         result_.seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -175,6 +180,7 @@ class Run {
     ~Run() {
         if (!reaped_) {
             kill_group();
+            interruptible_.reset();
             int status = 0;
             while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
             }
@@ -295,6 +301,8 @@ class Run {
     Reader err_;
     ProcessResult result_;
     bool reaped_ = false;
+    // Killed by the harness's SIGINT, SIGTERM or SIGHUP while registered.
+    std::optional<InterruptibleGroup> interruptible_;
 };
 
 } // namespace
@@ -318,16 +326,20 @@ ProcessResult run_process(const ProcessRequest& request) {
     make_pipe(err);
     const Clock::time_point start = Clock::now();
     pid_t pid = 0;
-    result.not_started = spawn(request, out[1], err[1], pid);
-    ::close(out[1]);
-    ::close(err[1]);
-    if (result.not_started) {
-        ::close(out[0]);
-        ::close(err[0]);
-        return result;
+    std::optional<Run> run;
+    {
+        const HeldInterrupts held; // until the engine's group is registered (Run)
+        result.not_started = spawn(request, out[1], err[1], pid);
+        ::close(out[1]);
+        ::close(err[1]);
+        if (result.not_started) {
+            ::close(out[0]);
+            ::close(err[0]);
+            return result;
+        }
+        run.emplace(request, pid, out[0], err[0]);
     }
-    Run run(request, pid, out[0], err[0]);
-    return run.finish(start);
+    return run->finish(start);
 }
 
 std::string last_line(const std::string& text, std::size_t max_chars) {

@@ -1,0 +1,109 @@
+// An interrupted harness leaves nothing behind (harness/engines/interruption.h,
+// docs/engine-protocol.md, "Processes"): an engine runs in its own process
+// group, so a Ctrl-C (SIGINT), a CI cancel (SIGTERM) or a closed terminal
+// (SIGHUP) reaches the harness alone; before it ends as signalled, the
+// harness kills the engine's group and removes the private folder of its
+// scene. Found by an outside review: the engine kept running with parent 1
+// and /tmp/impulse-engine-XXXXXX/SCENE.json stayed behind.
+#include "support/files.h"
+#include "support/tool.h"
+
+#include <catch2/catch.hpp>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <spawn.h>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using namespace impulse::test;
+
+namespace {
+
+// The tool with INT, TERM and HUP at their default actions, whatever the test
+// runner's are (a background CI shell ignores SIGINT, and a child inherits it).
+pid_t start_with_default_signals(const std::vector<std::string>& args) {
+    ToolCommand command(args, {});
+    posix_spawn_file_actions_t files;
+    posix_spawn_file_actions_init(&files);
+    posix_spawn_file_actions_addopen(&files, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&files, 2, "/dev/null", O_WRONLY, 0);
+    posix_spawnattr_t attributes;
+    posix_spawnattr_init(&attributes);
+    sigset_t defaults;
+    sigemptyset(&defaults);
+    for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
+        sigaddset(&defaults, signal);
+    }
+    posix_spawnattr_setsigdefault(&attributes, &defaults);
+    sigset_t none;
+    sigemptyset(&none);
+    posix_spawnattr_setsigmask(&attributes, &none);
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETSIGMASK);
+    pid_t pid = 0;
+    const int spawned = posix_spawn(&pid, command.binary(), &files, &attributes,
+                                    command.argv.data(), command.envp.data());
+    posix_spawn_file_actions_destroy(&files);
+    posix_spawnattr_destroy(&attributes);
+    REQUIRE(spawned == 0);
+    return pid;
+}
+
+// Gone, or a zombie its new parent has not reaped yet: either way not running.
+bool running(pid_t pid) {
+    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+    std::string pid_field, name, state;
+    if (!(stat >> pid_field >> name >> state)) {
+        return false;
+    }
+    return state != "Z" && state != "X";
+}
+
+} // namespace
+
+TEST_CASE("an interrupted run kills its engine's process group and removes the scene's folder",
+          "[engine-protocol][interruption]") {
+    for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
+        const TempDir tmp;
+        const fs::path marker = tmp.dir / "started";
+        const fs::path engine = tmp.dir / "engine.sh";
+        // Says where it is (its pid, once it is sleep's, and its scene), then waits.
+        spit(engine, "#!/bin/sh\necho \"$$ $1\" > " + marker.string() + ".part && mv " +
+                         marker.string() + ".part " + marker.string() + "\nexec sleep 300\n");
+        fs::permissions(engine, fs::perms::owner_all);
+        const fs::path out = tmp.dir / "out.json";
+        const pid_t tool = start_with_default_signals(
+            {"run", (fs::path(IMPULSE_SOURCE_DIR) / "harness" / "scenes" / "stack.json").string(),
+             "--engine-command", engine.string(), "--out", out.string()});
+        int status = 0;
+        bool exited_early = false;
+        while (!fs::exists(marker)) {
+            if (::waitpid(tool, &status, WNOHANG) == tool) {
+                exited_early = true;
+                break;
+            }
+            ::usleep(10000);
+        }
+        REQUIRE_FALSE(exited_early);
+        pid_t engine_pid = 0;
+        std::string scene_file;
+        std::ifstream(marker) >> engine_pid >> scene_file;
+        REQUIRE(engine_pid > 0);
+        REQUIRE(fs::exists(scene_file));
+        REQUIRE(running(engine_pid));
+
+        REQUIRE(::kill(tool, signal) == 0);
+        REQUIRE(::waitpid(tool, &status, 0) == tool);
+        INFO("signal " << signal);
+        CHECK(WIFSIGNALED(status)); // it ends as the signal ends it (a shell's 128 + N)
+        CHECK(WTERMSIG(status) == signal);
+        CHECK_FALSE(running(engine_pid));
+        CHECK_FALSE(fs::exists(fs::path(scene_file).parent_path()));
+        CHECK_FALSE(fs::exists(out));
+        if (running(engine_pid)) {
+            ::kill(engine_pid, SIGKILL); // not left for the next test
+        }
+    }
+}
