@@ -239,10 +239,28 @@ TEST_CASE("An engine that writes more than the trajectory limit is killed and re
         {"IMPULSE_MAX_TRAJECTORY_MIB=1"});
 }
 
-TEST_CASE("An engine that refuses a scene is a SKIPPED row, exit 0, a JUnit skip and no golden",
+TEST_CASE("An engine that refuses a scene it was blessed on fails the gate, naming the golden",
+          "[engine-failures]") {
+    // Found by an outside review: an engine that refused every scene passed
+    // check (each a SKIPPED row, exit 0) although every scene had a golden.
+    FakeProject p;
+    p.victim_runs({"python3", fake_engine, "refuse", "balls are not modelled"});
+    const Outcome checked = run_tool_in(p.dir, {"check", "--junit", "junit.xml"});
+    require_exit(checked, 1);
+    require_no_stack_trace(checked);
+    CHECK(has(checked.out, "unsupported by fake: balls are not modelled, but its golden "));
+    CHECK(has(checked.out, "delete the golden if fake no longer models this scene"));
+    CHECK(has(checked.out, "2 scenes: 1 passed, 1 failed, 0 errors"));
+    CHECK(has(slurp(p.dir / "junit.xml"), "<failure"));
+    CHECK(fs::exists(p.golden("victim")));
+}
+
+TEST_CASE("An engine that refuses a scene with no golden is a SKIPPED row, exit 0, a JUnit skip "
+          "and no golden",
           "[engine-failures]") {
     FakeProject p;
     p.victim_runs({"python3", fake_engine, "refuse", "balls are not modelled"});
+    fs::remove(p.golden("victim"));
     const std::string skip = "unsupported by fake: balls are not modelled";
     const Outcome checked = run_tool_in(p.dir, {"check", "--junit", "junit.xml"});
     require_exit(checked, 0);
@@ -256,7 +274,6 @@ TEST_CASE("An engine that refuses a scene is a SKIPPED row, exit 0, a JUnit skip
     CHECK_FALSE(has(xml, "<failure"));
     CHECK_FALSE(has(xml, "<error"));
 
-    fs::remove(p.golden("victim"));
     const Outcome blessed = run_tool_in(p.dir, {"bless"});
     require_exit(blessed, 0);
     CHECK(has(blessed.out, skip));

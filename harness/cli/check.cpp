@@ -35,7 +35,8 @@ without a project file, ROOT/harness/scenes/), in every engine of the
 project. A SCENE is a name or a path to one of the project's scenes. Every
 scene's declared expectations are checked too; a scene that breaks one fails
 even when its golden matches. A scene an engine refuses as unsupported is
-SKIPPED: neither a pass nor a failure.
+SKIPPED: neither a pass nor a failure; if the scene has a golden of that
+engine (it ran the scene when blessed), the refusal FAILED.
 
   --root DIR        the project's folder: DIR/impulse.json, or without one
                     DIR/harness/scenes/ and DIR/goldens/ (default: the first

@@ -187,7 +187,17 @@ SceneCheck check_scene(const Project& project, const EngineSpec& engine,
         }
         check.value = run_in(engine, scene, check.message);
         if (!check.value) {
-            check.status = SceneCheck::Status::skipped;
+            // A refusal is a skip, unless the engine was blessed on this
+            // scene: an engine that stops running what it ran is a change
+            // the gate is there to catch (one refusing every scene passed).
+            if (entry_exists(check.golden_file)) {
+                check.status = SceneCheck::Status::failed;
+                check.message += ", but its golden " + printable_path(check.golden_file) +
+                                 " holds a run of it; delete the golden if " + engine.name +
+                                 " no longer models this scene";
+            } else {
+                check.status = SceneCheck::Status::skipped;
+            }
             check.seconds = seconds_since(start);
             return check;
         }
