@@ -155,6 +155,26 @@ TEST_CASE("rejected resting_method", "[scene][resting-method]") {
                          "speculative contacts already cover each step's whole motion, so nothing "
                          "passes through unseen; remove \"ccd\"");
     }
+    SECTION("ccd with auto and more than 16 dynamic bodies, where auto time-steps from the start") {
+        // 17 discs a metre apart in a row over the ground: auto with world
+        // stepping leaves the event model (and ccd with it) at 17, not 16.
+        const auto discs = [](int count) {
+            std::string text =
+                R"({"schema":"impulse/scene@1","name":"row","dt":0.01,"duration":0.05,)"
+                R"("solver":{"resting":true,"ccd":true},"bodies":[{"name":"ground",)"
+                R"("static":true,"shape":{"box":[20,0.5]},"position":[0,-0.5]})";
+            for (int i = 0; i < count; ++i) {
+                text += R"(,{"name":"d)" + std::to_string(i) +
+                        R"(","shape":{"circle":0.25},"mass":1,"position":[)" +
+                        std::to_string(i - count / 2) + ",1]}";
+            }
+            return text + "]}";
+        };
+        require_rejected(discs(17), "solver.ccd",
+                         "is not needed with \"resting\": true and more than 16 dynamic bodies, "
+                         "where \"resting_method\": \"auto\" uses time-stepping from the start");
+        CHECK(parse_scene(discs(16), "row.json").solver.ccd);
+    }
     SECTION("a typo of the key") {
         require_rejected(scene_with(R"("solver": {"resting": true, "resting_methods": "auto"},)"),
                          "solver.resting_methods", "unknown key (did you mean resting_method?)");

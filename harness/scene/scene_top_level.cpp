@@ -114,6 +114,23 @@ void refuse_ccd_with_time_stepping(const Node& ccd, const SolverSettings& solver
                    "nothing passes through unseen; remove \"ccd\"");
 }
 
+// "auto" with more than 16 dynamic bodies time-steps from the start whatever
+// the stepping, which is known only once the bodies are (an outside review
+// found ccd silently ignored there: the same bits with and without it).
+void refuse_ccd_with_many_bodies(const Node& root, const Scene& scene) {
+    if (!scene.solver.ccd || time_stepping_from_start(scene.solver) ||
+        !time_stepping_from_start(scene)) {
+        return;
+    }
+    optional_member(*optional_member(root, "solver"), "ccd")
+        ->fail("is not needed with \"resting\": true and more than " +
+               std::to_string(events_bodies) +
+               " dynamic bodies, where \"resting_method\": \"auto\" uses time-stepping from the "
+               "start: its speculative contacts already cover each step's whole motion, so "
+               "nothing passes through unseen; remove \"ccd\", or set \"resting_method\": "
+               "\"events\" to keep the event model with ccd");
+}
+
 void read_solver(const Node& node, SolverSettings& solver) {
     require_object(node);
     reject_unknown_keys(node,
@@ -216,6 +233,7 @@ Scene read_scene(const Node& root, const std::string& file) {
         read_solver(*solver, scene.solver);
     }
     read_bodies(root, scene);
+    refuse_ccd_with_many_bodies(root, scene);
     // These refer to bodies, so they are read once the bodies are known.
     if (const std::optional<Node> tolerance = optional_member(root, "tolerance")) {
         read_tolerances(*tolerance, scene.tolerances);
