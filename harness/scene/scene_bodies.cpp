@@ -197,6 +197,7 @@ void read_bodies(const Node& root, Scene& scene) {
     NameIndex names;
     if (listed) {
         read_listed_bodies(*listed, scene, gas.has_value() || pile.has_value(), names);
+        refuse_unresolvable_bodies(*listed, scene); // the generated ones: their box
     }
     if (gas) {
         read_gas(*gas, scene);

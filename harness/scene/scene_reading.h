@@ -151,6 +151,9 @@ void read_gas(const Node& node, Scene& scene);
 double resolvable_extent(double contact_tolerance);
 void refuse_unresolvable_extent(const Node& block, const std::string& key, const std::string& box,
                                 double extent, double contact_tolerance, const std::string& cure);
+// Every listed body (scene.bodies, read so far) within the same extent, or
+// InputError at its bodies[i].position.
+void refuse_unresolvable_bodies(const Node& listed, const Scene& scene);
 
 // initial_overlaps.cpp: refuses bodies interpenetrating at t = 0.
 void reject_initial_overlaps(const Scene& scene);
