@@ -123,6 +123,10 @@ TEST_CASE("max-overlap and at-rest are read strictly, one sentence with the JSON
         {R"({"kind":"at-rest","after":3,"rtol":1e-9})", "expectations[0].after", "duration 2 s"},
         {R"({"kind":"at-rest","after":-1,"rtol":1e-9})", "expectations[0].after", ""},
         {R"({"kind":"at-rest","after":"1","rtol":1e-9})", "expectations[0].after", ""},
+        // A fraction of the released energy (1e308 of it overflowed to an
+        // infinite bound, and the run then failed "0 J is more than inf J").
+        {R"({"kind":"at-rest","after":1,"rtol":1.5})", "expectations[0].rtol", "at most 1"},
+        {R"({"kind":"at-rest","after":1,"rtol":1e308})", "expectations[0].rtol", "at most 1"},
     };
     for (const Bad& b : bad) {
         const fs::path scene = tmp.dir / "s.json";

@@ -211,8 +211,8 @@ BlessCounts write_prepared(Preparation& p, bool partial, std::ostream& out, std:
     if (hold) {
         out << "no golden was written: " << listed(p.refusing)
             << (p.refusing.size() == 1 ? " refuses" : " refuse") << " to be blessed, and " << held
-            << " other golden" << (held == 1 ? " stays" : "s stay")
-            << " as it was; fix the refusing scenes, or write the others with --partial\n";
+            << " other golden" << (held == 1 ? " stays as it was" : "s stay as they were")
+            << "; fix the refusing scenes, or write the others with --partial\n";
     } else if (!p.refusing.empty()) {
         int written = counts.created + counts.changed;
         out << "--partial: " << written << " golden" << (written == 1 ? " was" : "s were")

@@ -75,7 +75,7 @@ void refuse_protected(const std::string& option, const std::string& path, const 
         if (is_within(place, goldens)) {
             throw InputError(path, option,
                              "is in the goldens folder " + printable_path(goldens.string()) +
-                                 "; only impulse bless (scripts/regen-goldens) writes there");
+                                 "; only impulse bless writes there");
         }
     }
 }

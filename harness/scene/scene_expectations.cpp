@@ -197,6 +197,14 @@ void validate_at_rest(const Node& node, const Scene& scene, Expectation& expecta
         node.fail("an at-rest expectation must give rtol, the fraction of the released energy "
                   "the kinetic energy may keep (atol, in J, is optional)");
     }
+    // A fraction: above 1 it allows more than was released, which no run without
+    // an energy gain can have, and 1e308 of it overflowed to an infinite bound.
+    const Node rtol = node.member("rtol");
+    if (rtol.json().is_number() && rtol.json().get<double>() > 1.0) {
+        rtol.fail("is the fraction of the released energy the kinetic energy may keep, so at "
+                  "most 1 (1 allows all of it), got " +
+                  number_text(rtol.json().get<double>()));
+    }
 }
 
 struct ExpectationKind {
