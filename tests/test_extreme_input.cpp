@@ -164,6 +164,12 @@ TEST_CASE("A contact band as wide as the thinnest body is exit 2 at solver.conta
         bad_text("the default band and a ball 2e-10 m across",
                  ball_edit(R"("circle": 0.25)", R"("circle": 1e-10)"), "solver.contact_tolerance",
                  "is 1e-09 m, but the band"),
+        // A triangle 1e-15 m tall has no thickness in double precision (its
+        // inradius rounds to -0): the shape is at fault, not the band, which
+        // the sentence used to ask to be "below -0.0 m".
+        bad_text("a triangle too flat to have a thickness",
+                 ball_edit(R"("circle": 0.25)", R"("polygon": [[-0.1, 0], [0.1, 0], [0, 1e-15]])"),
+                 "bodies[1].shape", "no thickness to double precision"),
     };
     for (const BadFile& bad : cases) {
         require_scene_refused(bad);
@@ -243,12 +249,17 @@ TEST_CASE("Gravity whose per-step fall time-stepping cannot cancel is exit 2 at 
     }
     // At the edge: contact_tolerance 2^-48 m puts the limit at 1 m, and
     // g = 2^14 m/s^2 with dt = 2^-7 s falls exactly 2^14 x 2^-14 = 1 m per
-    // step: it runs. One ULP more gravity is refused.
-    const std::string edge =
-        replace_once(with_gravity(ball_solver(R"("resting": true, "resting_method": "time-stepping",
+    // step: it runs. One ULP more gravity is refused. The ball and a smaller
+    // ground are moved within that 1 m of the origin, where the positions
+    // of listed bodies must lie (docs/refusals-and-progress.md).
+    const std::string near_origin =
+        replace_once(replace_once(ball_solver(R"("resting": true, "resting_method": "time-stepping",
                                     "contact_tolerance": 3.552713678800501e-15)"),
-                                  "[0, -16384]"),
-                     R"("dt": 0.01)", R"("dt": 0.0078125)");
+                                  R"("shape": {"box": [5, 0.5]}, "position": [0, -0.5])",
+                                  R"("shape": {"box": [0.4, 0.2]}, "position": [0, -0.2])"),
+                     R"("position": [0, 2])", R"("position": [0, 0.5])");
+    const std::string edge = replace_once(with_gravity(near_origin, "[0, -16384]"), R"("dt": 0.01)",
+                                          R"("dt": 0.0078125)");
     require_runs(edge);
     require_scene_refused(bad_text("one ULP past the edge",
                                    replace_once(edge, "[0, -16384]", "[0, -16384.000000000004]"),

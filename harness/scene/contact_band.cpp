@@ -53,6 +53,15 @@ void refuse_contact_band_beyond_bodies(const Scene& scene) {
         return body_reference(scene, i) + ", whose inradius (half its thickness) is " +
                sentence_number(r) + " m";
     };
+    if (!(thinnest > 0.0) && body < scene.listed_bodies) {
+        // No band is thin enough: the shape itself is the fault (a triangle
+        // 1e-15 m tall had an inradius of -0 m, and the sentence asked for a
+        // tolerance below it).
+        throw InputError(scene.file, "bodies[" + std::to_string(body) + "].shape",
+                         "has an inradius (half its thickness) of " + sentence_number(thinnest) +
+                             " m: no thickness to double precision, so no contact tolerance is "
+                             "thinner than it; make the shape thicker");
+    }
     if (!(d < thinnest)) {
         throw InputError(scene.file, "solver.contact_tolerance",
                          "is " + sentence_number(d) +
