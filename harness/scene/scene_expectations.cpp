@@ -17,6 +17,9 @@ namespace {
 // JSON reader is sure to hold exactly, and far more than any useful bound.
 constexpr long long max_ulp = 9007199254740992;
 
+// at-rest's rtol times the energies the gate sums (at most 2^960 J) stays finite.
+constexpr double max_rest_rtol = 0x1p60;
+
 ChannelTolerance read_channel_tolerance(const Node& node) {
     require_object(node);
     reject_unknown_keys(node, {"atol", "rtol", "ulp"});
@@ -197,12 +200,14 @@ void validate_at_rest(const Node& node, const Scene& scene, Expectation& expecta
         node.fail("an at-rest expectation must give rtol, the fraction of the released energy "
                   "the kinetic energy may keep (atol, in J, is optional)");
     }
-    // A fraction: above 1 it allows more than was released, which no run without
-    // an energy gain can have, and 1e308 of it overflowed to an infinite bound.
+    // The energies the gate sums stay within 2^960 J (scene_pile_block.cpp),
+    // so rtol times them is finite up to rtol 2^60; 1e308 overflowed to an
+    // infinite allowance, and a run at rest failed against it.
     const Node rtol = node.member("rtol");
-    if (rtol.json().is_number() && rtol.json().get<double>() > 1.0) {
-        rtol.fail("is the fraction of the released energy the kinetic energy may keep, so at "
-                  "most 1 (1 allows all of it), got " +
+    if (rtol.json().is_number() && rtol.json().get<double>() > max_rest_rtol) {
+        rtol.fail("must be at most 2^60 = 1152921504606846976, so that rtol times the "
+                  "energies the gate sums stays finite (a fraction of the released energy: 1 "
+                  "already allows all of it), got " +
                   number_text(rtol.json().get<double>()));
     }
 }
