@@ -3,6 +3,7 @@
 #include "gate.h"
 #include "support/files.h"
 #include "support/tool.h"
+#include "support/tool_in_folder.h"
 #include "trajectory.h"
 
 #include <catch2/catch.hpp>
@@ -268,4 +269,29 @@ TEST_CASE("Tolerance mode needs a tolerance for every compared channel", "[gate]
     CHECK(none.out.find("no tolerance for channel") != std::string::npos);
     CHECK(check(root, {"--tolerance", "--atol", "1e-12", "--ulp", "4"}).exit_code == 0);
     CHECK(check(root, {"--atol", "1e-12"}).exit_code == 2); // tolerances without --tolerance
+}
+
+TEST_CASE("goldens left in goldens/ when a second engine is added are named as the old layout",
+          "[gate]") {
+    // Found by an outside review: after adding an engine, every golden of
+    // the first was "unreferenced (no scene of that name)" beside its scene.
+    const TempDir tmp;
+    const fs::path dir = tmp.dir / "project";
+    fs::create_directories(dir / "scenes");
+    fs::copy_file(fs::path(IMPULSE_SOURCE_DIR) / "harness" / "scenes" / "stack.json",
+                  dir / "scenes" / "stack.json");
+    spit(dir / "impulse.json", R"({"schema": "impulse/project@1", "scenes": ["scenes"],
+        "engines": [{"name": "impulse", "builtin": "impulse"}]})");
+    REQUIRE(run_tool_in(dir, {"bless"}).exit_code == 0);
+    REQUIRE(fs::exists(dir / "goldens" / "stack.json"));
+    spit(dir / "impulse.json", R"({"schema": "impulse/project@1", "scenes": ["scenes"],
+        "engines": [{"name": "impulse", "builtin": "impulse"},
+                    {"name": "box2d", "builtin": "box2d"}]})");
+    const Outcome checked = run_tool_in(dir, {"check"});
+    INFO(checked.out << checked.err);
+    CHECK(checked.err.find("goldens/stack.json: unreferenced golden (a golden of the one-engine "
+                           "layout: with several engines each engine's goldens are in ") !=
+          std::string::npos);
+    CHECK(checked.err.find("no scene of that name") == std::string::npos);
+    CHECK(fs::exists(dir / "goldens" / "stack.json")); // check deletes nothing
 }

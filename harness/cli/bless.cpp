@@ -254,8 +254,8 @@ int write_goldens(const std::string& verb, const std::vector<std::string>& args,
             out << "  removed    " << printable_path(golden) << "\n";
         } else {
             out << "  unreferenced " << printable_path(golden)
-                << (held ? " (not pruned while a scene refuses)\n"
-                         : " (no scene of that name; --prune deletes it)\n");
+                << (held ? std::string(" (not pruned while a scene refuses)\n")
+                         : " (" + unreferenced_reason(project, golden) + "; --prune deletes it)\n");
         }
     }
     out << "goldens: " << c.created << " new, " << c.changed << " changed, " << c.unchanged

@@ -127,13 +127,16 @@ void add_unreferenced_goldens(const Project& project, bool ci, std::vector<Scene
             orphan.name = std::filesystem::path(golden).stem().string();
             orphan.golden_file = golden;
             orphan.status = SceneCheck::Status::failed;
-            orphan.message = printable_path(golden) +
-                             ": unreferenced golden: no canonical scene is named '" + orphan.name +
-                             "'; delete it with " + project.regen + " --prune";
+            const std::string reason = unreferenced_reason(project, golden);
+            orphan.message = printable_path(golden) + ": unreferenced golden: " +
+                             (reason == "no scene of that name"
+                                  ? "no canonical scene is named '" + orphan.name + "'"
+                                  : reason) +
+                             "; delete it with " + project.regen + " --prune";
             checks.push_back(orphan);
         } else {
-            err << "warning: " << printable_path(golden)
-                << ": unreferenced golden (no scene of that name); " << project.regen
+            err << "warning: " << printable_path(golden) << ": unreferenced golden ("
+                << unreferenced_reason(project, golden) << "); " << project.regen
                 << " --prune deletes it, CI fails on it\n";
         }
     }

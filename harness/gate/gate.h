@@ -41,6 +41,12 @@ std::vector<std::string> scenes_named(const Project& project,
 // Goldens with no project scene of their name, even ignoring case, in each
 // engine's golden folder (and, with several engines, GOLDENS/*.json).
 std::vector<std::string> unreferenced_goldens(const Project& project);
+// Why such a golden is unreferenced, for the sentence after its path: "no
+// scene of that name", or, for a golden left in GOLDENS/ itself once the
+// project has several engines, that each engine's goldens now live in
+// GOLDENS/ENGINE/ (an outside review added a second engine and was told
+// that scenes which exist had no scene of their name).
+std::string unreferenced_reason(const Project& project, const std::string& golden);
 // Throws InputError unless `scene_path` is one of the project's scenes: the
 // golden of any other scene would be unreferenced (and pruned).
 void require_project_scene(const Project& project, const std::string& scene_path);

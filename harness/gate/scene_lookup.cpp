@@ -140,6 +140,18 @@ std::vector<std::string> unreferenced_goldens(const Project& project) {
     return unreferenced;
 }
 
+std::string unreferenced_reason(const Project& project, const std::string& golden) {
+    const bool top_level = fs::path(golden).parent_path().lexically_normal() ==
+                           fs::path(goldens_dir(project)).lexically_normal();
+    if (project.engines.size() > 1 && top_level) {
+        return "a golden of the one-engine layout: with several engines each engine's goldens "
+               "are in " +
+               printable_path((fs::path(goldens_dir(project)) / "ENGINE").string()) +
+               "/, so move it into the folder of the engine that made it, or bless that engine";
+    }
+    return "no scene of that name";
+}
+
 void require_project_scene(const Project& project, const std::string& scene_path) {
     const std::vector<std::string> scenes = project_scenes(project);
     // A scene from the list itself is the common case: no file system calls.
