@@ -176,4 +176,17 @@ TEST_CASE("init --engine-command names the user's engine in the project file, or
     require_exit(bad, 2);
     CHECK(has(bad.err, "engines[0].name"));
     CHECK(fs::is_empty(other));
+
+    // Into folders that do not exist yet: every folder init made is taken
+    // back (an outside review found a/ and a/b/scenes/ left behind), and an
+    // empty --engine-command is refused before any is made.
+    const fs::path deep = temp.dir / "new" / "a" / "b";
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"init", deep.string(), "--engine", "my seed"},
+          std::vector<std::string>{"init", deep.string(), "--engine-command", "  "}}) {
+        const Outcome refused = impulse::test::run_tool(args);
+        INFO(refused.err);
+        require_exit(refused, 2);
+        CHECK_FALSE(fs::exists(temp.dir / "new"));
+    }
 }

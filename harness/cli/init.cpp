@@ -124,11 +124,6 @@ int init_verb(const std::vector<std::string>& args, std::ostream& out, std::ostr
                              "overwrites one (edit the file, or init another folder)");
         }
     }
-    std::error_code error;
-    fs::create_directories(dir / "scenes", error);
-    if (error) {
-        throw InputError((dir / "scenes").string(), "", "cannot be made (" + error.message() + ")");
-    }
     std::vector<std::string> command{"./my-engine"};
     if (const auto given = a.option("--engine-command")) {
         std::istringstream words(*given);
@@ -140,17 +135,36 @@ int init_verb(const std::vector<std::string>& args, std::ostream& out, std::ostr
             throw UsageError("--engine-command needs a program to run, got '" + *given + "'");
         }
     }
+    // The folders init makes, outermost first, so that a refusal can take
+    // back every one of them (an outside review's `init a/b --engine "bad
+    // name"` left a/ and a/b/scenes/ behind).
+    std::vector<fs::path> made;
+    for (fs::path folder = dir / "scenes"; !folder.empty() && !entry_exists(folder);
+         folder = folder.parent_path()) {
+        made.insert(made.begin(), folder);
+    }
+    std::error_code error;
+    const auto take_back = [&] {
+        fs::remove(scene_file, error);
+        fs::remove(project_file, error);
+        for (auto folder = made.rbegin(); folder != made.rend(); ++folder) {
+            fs::remove(*folder, error); // only when empty: nothing of the user's goes
+        }
+    };
+    fs::create_directories(dir / "scenes", error);
+    if (error) {
+        take_back();
+        throw InputError((dir / "scenes").string(), "", "cannot be made (" + error.message() + ")");
+    }
     const std::string name = a.option("--engine").value_or("my-engine");
-    write_file_atomically(scene_file.string(), starter_scene);
     try {
+        write_file_atomically(scene_file.string(), starter_scene);
         write_file_atomically(project_file.string(), starter_project(name, command));
         // The file is read back as every verb will read it: a name the
         // project file refuses is refused here, with nothing left behind.
         load_project(project_file.string());
     } catch (const InputError&) {
-        fs::remove(scene_file, error); // all or nothing
-        fs::remove(project_file, error);
-        fs::remove(dir / "scenes", error); // only when it is empty: a folder init made
+        take_back(); // all or nothing
         throw;
     }
     out << "wrote " << printable_path(project_file.string()) << " and "
