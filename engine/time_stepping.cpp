@@ -191,22 +191,20 @@ class TimeStep {
     // hold()'s point whose answer, even solved again tightly, carries it
     // through its partner (crossing()); the step then stops.
     const ContactPoint* crossed_ = nullptr;
-    // keep_velocities(): each body of a problem's points and its velocities.
-    std::vector<std::pair<int, BodyState>> kept_;
 };
 
 void TimeStep::keep_velocities(const IslandProblem& problem) {
-    kept_.clear();
+    s_.before_loose.clear();
     for (const ContactPoint& point : problem.points) {
         for (const int b : {point.a, point.b}) {
-            kept_.emplace_back(b, world_.bodies[static_cast<std::size_t>(b)].state);
+            s_.before_loose.emplace_back(b, world_.bodies[static_cast<std::size_t>(b)].state);
         }
     }
 }
 
 // Only the velocities: the positions are set from them after the solve.
 void TimeStep::restore_velocities() {
-    for (const auto& [b, state] : kept_) {
+    for (const auto& [b, state] : s_.before_loose) {
         BodyState& now = world_.bodies[static_cast<std::size_t>(b)].state;
         now.velocity = state.velocity;
         now.angular_velocity = state.angular_velocity;
@@ -490,10 +488,15 @@ bool TimeStep::hold(int first, int last, bool& pushed) {
     if (!solved.solved || !impulses_finite(p)) {
         return false;
     }
-    keep_velocities(p);
+    // Only a loose answer (closing a point by more than d) can cross a pair:
+    // a tight one is applied with no copy kept (the step's hot path).
+    const bool loose = h_ * solved.residual > d_;
+    if (loose) {
+        keep_velocities(p);
+    }
     apply_impulses(world_, p);
     crossed_ = nullptr;
-    if (h_ * solved.residual > d_ && crossing(world_, p, h_) != nullptr) {
+    if (loose && crossing(world_, p, h_) != nullptr) {
         // A loose answer that would carry a pair through itself: solved again
         // from it, to the tight residual with the overlap guard's larger cap
         // (pile-on-pegs, 80 boxes at dt 1/30: one island at 1.93 s stopped by

@@ -10,6 +10,7 @@
 #include "pgs.h"
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace impulse {
@@ -78,8 +79,11 @@ inline void join_bodies(std::vector<int>& parent, int a, int b) {
 struct TimeSteppingScratch {
     std::vector<BodyState> start;    // x_k, v_k of every body
     std::vector<BodyState> free_end; // free flight by the scene's integrator
-    std::vector<Transform> poses;    // per body, at the configuration being looked at
-    std::vector<double> reach;       // per body: how far any of its points moves in the step
+    // hold(): each body of a loose holding answer's points and its state
+    // before that answer was applied, for a second solve (time_stepping.cpp).
+    std::vector<std::pair<int, BodyState>> before_loose;
+    std::vector<Transform> poses; // per body, at the configuration being looked at
+    std::vector<double> reach;    // per body: how far any of its points moves in the step
     // Per body: its state when s.pairs were found; with s.reach, what the
     // pairs cover (a body within its reach of it meets no body it has no
     // pair with).
