@@ -293,6 +293,16 @@ TEST_CASE("A scene with a bad shape or overlapping bodies is exit 2 naming the b
         bad_text("a polygon too small to have an area",
                  shape(R"({"polygon": [[-1e-200, -1e-200], [1e-200, -1e-200], [0, 1e-200]]})"),
                  "bodies[1].shape.polygon", "got area 0"),
+        bad_text("a polygon whose area overflows",
+                 shape(R"({"polygon": [[-1e200, -1e200], [1e200, -1e200], [0, 1e200]]})"),
+                 "bodies[1].shape.polygon", "its area overflows double precision"),
+        // 2^48 contact tolerances (1e-9 m) is 2.8e5 m: these corners are held
+        // to 1.5e-8 m, and recentring would carry the body 1e8 m out.
+        bad_text("a polygon given 1e8 m from its body's origin",
+                 shape(R"({"polygon": [[1e8, 1e8], [100000000.16, 1e8], [100000000.08, )"
+                       R"(100000000.12]]})"),
+                 "bodies[1].shape.polygon",
+                 "has vertices 100000000.16 m from the body's origin, but positions resolve"),
         bad_text("a repeated vertex", shape(R"({"polygon": [[-1, -1], [1, -1], [1, -1], [0, 1]]})"),
                  "bodies[1].shape.polygon[2]", "repeats vertex 1"),
         bad_text("every vertex the same", shape(R"({"polygon": [[0, 0], [0, 0], [0, 0]]})"),

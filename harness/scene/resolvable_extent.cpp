@@ -43,6 +43,31 @@ void refuse_unresolvable_extent(const Node& block, const std::string& key, const
                           " m: a double holds x to within x 2^-52); " + cure);
 }
 
+// A polygon's vertices, by the same rule, before it is recentred: given 1e8 m
+// from its body's origin (found by an outside review), a 0.16 m triangle's
+// corners are held only to 1.5e-8 m, and recentring would carry the body
+// itself 1e8 m out, refused there at a position the file never gave.
+void refuse_unresolvable_vertices(const Node& node, const Polygon& polygon,
+                                  double contact_tolerance) {
+    double reach = 0.0;
+    for (int i = 0; i < polygon.count; ++i) {
+        const Vec2 v = polygon.vertices[static_cast<std::size_t>(i)];
+        reach = std::max({reach, std::fabs(v.x), std::fabs(v.y)});
+    }
+    const double limit = resolvable_extent(contact_tolerance);
+    if (reach <= limit) {
+        return;
+    }
+    node.fail("has vertices " + number_text(reach) +
+              " m from the body's origin, but positions resolve the contact tolerance only "
+              "within " +
+              number_text(limit) + " m of it (2^48 times solver.contact_tolerance " +
+              number_text(contact_tolerance) +
+              " m: a double holds x to within x 2^-52); give the vertices about the "
+              "polygon's own centre (that centre in the body's position), or raise "
+              "solver.contact_tolerance");
+}
+
 // Listed bodies, by the same rule: found by an outside review, the canonical
 // pile moved 1e12 m from the origin ended 2.3 cm deep, and moved 1e15 m
 // (where positions resolve to 0.125 m) it ran with every expectation met.

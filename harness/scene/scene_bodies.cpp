@@ -126,6 +126,10 @@ SceneBody read_body(const Node& node, Scene& scene, NameIndex& names) {
     body.is_static = read_bool_or(node, "static", false);
     const Node shape = required_member(node, "shape");
     body.shape = read_shape(shape);
+    if (shape.has("polygon")) { // a box is a polygon too, centred by construction
+        refuse_unresolvable_vertices(shape.member("polygon"), body.shape.polygon,
+                                     scene.solver.contact_tolerance);
+    }
     body.position = read_vec2_or(node, "position", {});
     body.angle = read_number_or(node, "angle", 0.0);
     MassSpec mass;

@@ -154,6 +154,10 @@ void refuse_unresolvable_extent(const Node& block, const std::string& key, const
 // Every listed body (scene.bodies, read so far) within the same extent, or
 // InputError at its bodies[i].position.
 void refuse_unresolvable_bodies(const Node& listed, const Scene& scene);
+// A listed polygon's vertices (as given, before recentring) within the same
+// extent of its body's origin, or InputError at its shape's "polygon".
+void refuse_unresolvable_vertices(const Node& node, const Polygon& polygon,
+                                  double contact_tolerance);
 
 // initial_overlaps.cpp: refuses bodies interpenetrating at t = 0.
 void reject_initial_overlaps(const Scene& scene);
