@@ -109,6 +109,21 @@ void scale_row(PgsRow& r, double scale) {
     r.rb *= scale;
 }
 
+// The common scale of an unscaled island: the power of two nearest below
+// 1 / sqrt(max A_ii), so that mu = lambda / scale is an impulse in units of
+// about the island's heaviest effective mass. Multiplying by a power of two
+// is exact, so the iteration's bits are those of scale 1 (the same answers,
+// bit for bit, wherever nothing overflows or is subnormal), but its squared
+// norms stay finite: found by an outside review, a pile of density 1e200
+// (impulses near 1e201, |lambda|^2 overflowing) was declared unbounded.
+double impulse_unit(double largest_diagonal) {
+    if (!(largest_diagonal > 0.0) || !std::isfinite(largest_diagonal)) {
+        return 1.0;
+    }
+    const int exponent = std::ilogb(largest_diagonal); // A_ii in [2^e, 2^(e+1))
+    return std::ldexp(1.0, -(exponent >= 0 ? exponent / 2 : (exponent - 1) / 2));
+}
+
 // Rows, diagonals, scales, slots and vector sizes for this call; the warm
 // start projected onto lambda >= 0 and scaled into mu. Returns the bound on
 // ||A^|| (norm_bound).
@@ -124,11 +139,16 @@ double prepare(const World& world, const std::vector<ContactPoint>& points,
     s.diagonal.resize(n);
     s.scale.resize(n);
     s.scaled_q.resize(n);
+    double largest = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
         s.rows[i] = row_of(world, points[i], s.local_of_body, s.bodies);
         s.diagonal[i] = delassus(world, points[i], points[i]); // A_ii, as solve_lcp sees it
+        largest = std::max(largest, s.diagonal[i]);
+    }
+    const double unit = impulse_unit(largest);
+    for (std::size_t i = 0; i < n; ++i) {
         // A point between static bodies only (A_ii = 0) has nothing to scale.
-        s.scale[i] = scaled && s.diagonal[i] > 0.0 ? 1.0 / std::sqrt(s.diagonal[i]) : 1.0;
+        s.scale[i] = scaled && s.diagonal[i] > 0.0 ? 1.0 / std::sqrt(s.diagonal[i]) : unit;
         scale_row(s.rows[i], s.scale[i]);
         s.scaled_q[i] = s.scale[i] * q[i];
     }
