@@ -266,6 +266,69 @@ TEST_CASE("Gravity whose per-step fall time-stepping cannot cancel is exit 2 at 
                                    "gravity", "only for a fall within 1 m"));
 }
 
+TEST_CASE("A first step's travel time-stepping cannot hold is exit 2 at the speed that gives it",
+          "[extreme-input]") {
+    const std::string time_stepping = R"("resting": true, "resting_method": "time-stepping")";
+    const std::string ts_ball = ball_solver(time_stepping);
+    const std::string within = "only for a step's travel within 281474.976710656 m";
+    const std::string gas = R"({
+  "schema": "impulse/scene@1",
+  "name": "drop-box",
+  "gravity": [0, 0],
+  "dt": 0.01,
+  "duration": 0.05,
+  "solver": {"integrator": "verlet", "resting": true, "stepping": "local"},
+  "gas": {"count": 4, "shape": {"circle": 0.1}, "mass": 1, "spacing": 0.5, "max_speed": 1}
+}
+)";
+    const std::vector<BadFile> cases = {
+        // These stopped at t = 0 with "use a smaller dt", which cannot help
+        // at 1e20 m/s (1e18 m per step).
+        bad_text("a ball at 1e20 m/s",
+                 replace_once(ts_ball, R"("position": [0, 2])",
+                              R"("position": [0, 2], "velocity": [0, -1e20])"),
+                 "bodies[1].velocity", within),
+        bad_text("a ball at 1e155 m/s with auto and local stepping",
+                 replace_once(ball_solver(R"("resting": true, "stepping": "local")"),
+                              R"("position": [0, 2])",
+                              R"("position": [0, 2], "velocity": [1e155, 0])"),
+                 "bodies[1].velocity", "moves 'ball' 1e+153 m in its first step"),
+        // Turning: a square's corner 0.25 sqrt(2) m out x 1e20 rad/s x
+        // 0.01 s (a spinning circle moves no point toward anything).
+        bad_text("a square spinning at 1e20 rad/s",
+                 replace_once(replace_once(ts_ball, R"("position": [0, 2])",
+                                           R"("position": [0, 2], "angular_velocity": 1e20)"),
+                              R"({"circle": 0.25})", R"({"box": [0.25, 0.25]})"),
+                 "bodies[1].angular_velocity", "moves 'ball' 353553390593273792 m"),
+        bad_text("a gas drawn up to 1e20 m/s",
+                 replace_once(gas, "\"max_speed\": 1", "\"max_speed\": 1e20"), "gas.max_speed",
+                 "moves the gas's fastest body 1e+18 m"),
+    };
+    for (const BadFile& bad : cases) {
+        require_scene_refused(bad);
+    }
+    // The event model is bounded by the tunnelling refusal instead, which
+    // names the pair.
+    require_scene_refused(bad_text(
+        "a ball at 1e20 m/s with events",
+        replace_once(ball_solver(R"("resting": true, "resting_method": "events")"),
+                     R"("position": [0, 2])", R"("position": [0, 2], "velocity": [0, -1e20])"),
+        "bodies[1]", "could pass through the other between two steps"));
+    // At the edge: contact_tolerance 2^-48 m puts the limit at 1 m, and 2^7
+    // m/s for dt = 2^-7 s moves the ball exactly 1 m: it runs, sideways over
+    // a ground held within that 1 m of the origin. One ULP faster is refused.
+    const std::string near_origin = replace_once(
+        replace_once(ball_solver(time_stepping + R"(, "contact_tolerance": 3.552713678800501e-15)"),
+                     R"("shape": {"box": [5, 0.5]}, "position": [0, -0.5])",
+                     R"("shape": {"box": [0.4, 0.2]}, "position": [0, -0.2])"),
+        R"("position": [0, 2])", R"("position": [0, 0.5], "velocity": [128, 0])");
+    const std::string edge = replace_once(near_origin, R"("dt": 0.01)", R"("dt": 0.0078125)");
+    require_runs(edge);
+    require_scene_refused(bad_text("one ULP past the edge",
+                                   replace_once(edge, "[128, 0]", "[128.00000000000003, 0]"),
+                                   "bodies[1].velocity", "only for a step's travel within 1 m"));
+}
+
 TEST_CASE("An energy that is not finite fails energy-non-increasing without a contradiction",
           "[extreme-input]") {
     // 1/2 1e300 kg (1e5 m/s)^2 = 5e309 J is inf. The weight is 0 (no

@@ -5,7 +5,7 @@
 #include "number_format.h"
 #include "record.h"
 #include "simulator.h"
-#include "step_fall.h"
+#include "step_travel.h"
 #include "tunnelling.h"
 
 namespace impulse::harness {
@@ -51,9 +51,11 @@ Trajectory run_scene(const Scene& scene, const Overrides& overrides) {
     const Scene effective = with_overrides(scene, overrides);
     refuse_tunnelling(effective); // a tunnel would pass unseen: refused, not run
     // Scales the engine cannot resolve: a contact band as wide as a body, and
-    // (time-stepping) a per-step fall beyond the contact tolerance's reach.
+    // (time-stepping) a per-step fall or initial travel beyond the contact
+    // tolerance's reach.
     refuse_contact_band_beyond_bodies(effective);
     refuse_unresolvable_step_fall(effective);
+    refuse_unresolvable_step_speed(effective);
     std::unique_ptr<Simulator> simulator = make_impulse_simulator(effective);
     Trajectory trajectory = record(*simulator, effective);
     const std::string used = overrides_list(overrides);
