@@ -521,6 +521,29 @@ TEST_CASE("an engine's message is its last non-empty line, printable and short",
     CHECK(last_line("bad \xff byte", 300) == "bad \\xff byte");
 }
 
+TEST_CASE("an engine's message passes over the stack frames and banner a runtime adds to a crash",
+          "[engine-protocol]") {
+    // Node's report of an uncaught `throw new Error("no polygons here")`.
+    const std::string node =
+        "/work/engine.js:12\n    throw new Error(\"no polygons here\");\n"
+        "    ^\n\nError: no polygons here\n"
+        "    at step (/work/engine.js:12:11)\n"
+        "    at Object.<anonymous> (/work/engine.js:40:1)\n"
+        "    at node:internal/main/run_main_module:28:49\n\nNode.js v20.19.2\n";
+    CHECK(last_line(node, 300) == "Error: no polygons here");
+    // Java's: the exception's line comes first, its frames after it.
+    CHECK(last_line(
+              "Exception in thread \"main\" java.lang.IllegalStateException: no "
+              "polygons\n\tat Engine.step(Engine.java:12)\n\tat Engine.main(Engine.java:40)\n",
+              300) == "Exception in thread \"main\" java.lang.IllegalStateException: no polygons");
+    // A message of the engine's own that starts with "at" is not indented: kept.
+    CHECK(last_line("at t = 3 s the solver diverged\n", 300) == "at t = 3 s the solver diverged");
+    CHECK(last_line("Node.js v20 is too old for this engine\n", 300) ==
+          "Node.js v20 is too old for this engine");
+    // Only trailer lines: the last of them, rather than nothing.
+    CHECK(last_line("    at somewhere (x.js:1:1)\n", 300) == "at somewhere (x.js:1:1)");
+}
+
 #ifdef IMPULSE_WITH_BOX2D
 TEST_CASE("the box2d engine runs a canonical scene", "[engine-protocol]") {
     const Scene scene = load_scene((source_dir / "harness/scenes/drop-box.json").string());

@@ -10,6 +10,7 @@
 #include "interruption.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -342,16 +343,46 @@ ProcessResult run_process(const ProcessRequest& request) {
     return run->finish(start);
 }
 
+namespace {
+
+// What a runtime writes after an uncaught exception's own line: indented
+// stack frames ("    at f (engine.js:10:5)", Node's and Java's) and Node's
+// closing "Node.js v20.19.2". Found by a helper that wrote a Node engine:
+// every crash was reported as "Node.js v20".
+bool runtime_trailer(const std::string& raw, const std::string& trimmed) {
+    const bool indented = !raw.empty() && (raw[0] == ' ' || raw[0] == '\t');
+    if (indented && trimmed.rfind("at ", 0) == 0) {
+        return true;
+    }
+    const std::string banner = "Node.js v";
+    return trimmed.rfind(banner, 0) == 0 && trimmed.size() > banner.size() &&
+           std::isdigit(static_cast<unsigned char>(trimmed[banner.size()])) != 0 &&
+           trimmed.find(' ', banner.size()) == std::string::npos;
+}
+
+} // namespace
+
 std::string last_line(const std::string& text, std::size_t max_chars) {
     std::size_t end = text.size();
     std::string line;
+    std::string fallback; // the last non-empty line, when every line is a trailer
     while (end > 0 && line.empty()) {
         const std::size_t newline = text.rfind('\n', end - 1);
         const std::size_t begin = newline == std::string::npos ? 0 : newline + 1;
-        line = text.substr(begin, end - begin);
+        const std::string raw = text.substr(begin, end - begin);
+        line = raw;
         line.erase(line.find_last_not_of(" \t\r\f\v") + 1);
         line.erase(0, std::min(line.size(), line.find_first_not_of(" \t")));
         end = newline == std::string::npos ? 0 : newline;
+        if (!line.empty() && runtime_trailer(raw, line)) {
+            if (fallback.empty()) {
+                fallback = line;
+            }
+            line.clear();
+        }
+    }
+    if (line.empty()) {
+        line = fallback;
     }
     for (char& c : line) {
         const auto byte = static_cast<unsigned char>(c);

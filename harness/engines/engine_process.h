@@ -39,8 +39,11 @@ struct ProcessResult {
 // failure of this process's own (pipes, memory).
 ProcessResult run_process(const ProcessRequest& request);
 
-// The last non-empty line of `text`, control characters replaced by '?' and
-// cut to `max_chars` characters (with "..." when cut): an engine's message.
+// The last non-empty line of `text` that is not a runtime's trailer to an
+// uncaught exception (indented "at ..." stack frames, Node's "Node.js vN"
+// line; the last non-empty line when every line is one), control characters
+// replaced by '?' and cut to `max_chars` characters (with "..." when cut): an
+// engine's message.
 std::string last_line(const std::string& text, std::size_t max_chars);
 
 } // namespace impulse::harness
