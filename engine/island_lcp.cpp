@@ -78,13 +78,36 @@ IslandSolve solve_iteratively(World& world, IslandProblem& p, double tolerance) 
 // MPRGP (mprgp.h), warm started from problem.lambda: about sqrt(cond A)
 // products where Gauss-Seidel needs about cond A sweeps, so a tall column
 // converges cold within the cap and a settled pile in one product.
+//
+// An island of at most diagonal_scaling_points points is iterated unscaled,
+// and there the unbounded test measures curvature against the bound on the
+// whole of A: with masses spanning 1e12 in one island (a 1e12 kg disc among
+// 1 to 10 kg ones, found by an outside review) the heavy disc's own
+// directions are flatter than that bound's rounding, and a solvable holding
+// problem was declared unbounded ("no solution"). Such an answer is tried
+// once more, cold, with the diagonal scaled (unit diagonal: the heavy rows
+// as curved as the light ones), and kept only if that converges; a problem
+// with no solution stays so. Runs that were solved are untouched, bit for bit.
 MprgpResult run_mprgp(World& world, IslandProblem& p, double tolerance, int max_products) {
     PgsSettings settings;
     settings.tolerance = tolerance;
     settings.max_sweeps = max_products;
     const MprgpResult r = solve_mprgp(world, p.points, p.q, p.lambda, settings, p.mprgp);
     world.work.solver_sweeps += r.sweeps;
-    return r;
+    if (!r.unbounded || p.points.size() > diagonal_scaling_points) {
+        return r;
+    }
+    p.scaled_lambda.assign(p.points.size(), 0.0);
+    const MprgpResult scaled = solve_mprgp(world, p.points, p.q, p.scaled_lambda, settings, p.mprgp,
+                                           MprgpScaling::diagonal);
+    world.work.solver_sweeps += scaled.sweeps;
+    ++world.work.unbounded_rescaled;
+    if (!scaled.converged) {
+        return r;
+    }
+    ++world.work.unbounded_rescaled_solved;
+    p.lambda.swap(p.scaled_lambda);
+    return scaled;
 }
 
 IslandSolve finish(World& world, const MprgpResult& r) {

@@ -128,13 +128,14 @@ double impulse_unit(double largest_diagonal) {
 // start projected onto lambda >= 0 and scaled into mu. Returns the bound on
 // ||A^|| (norm_bound).
 double prepare(const World& world, const std::vector<ContactPoint>& points,
-               const std::vector<double>& q, std::vector<double>& lambda, MprgpScratch& s) {
+               const std::vector<double>& q, std::vector<double>& lambda, MprgpScratch& s,
+               MprgpScaling scaling) {
     if (s.local_of_body.size() < world.bodies.size()) {
         s.local_of_body.resize(world.bodies.size(), -1);
     }
     s.bodies.clear();
     const std::size_t n = points.size();
-    const bool scaled = n > diagonal_scaling_points;
+    const bool scaled = scaling == MprgpScaling::diagonal || n > diagonal_scaling_points;
     s.rows.resize(n);
     s.diagonal.resize(n);
     s.scale.resize(n);
@@ -558,9 +559,10 @@ int free_step(const std::vector<double>& q, std::vector<double>& lambda, const L
 
 MprgpResult solve_mprgp(const World& world, const std::vector<ContactPoint>& points,
                         const std::vector<double>& q, std::vector<double>& lambda,
-                        const PgsSettings& settings, MprgpScratch& scratch) {
+                        const PgsSettings& settings, MprgpScratch& scratch, MprgpScaling scaling) {
     MprgpScratch& s = scratch;
-    const Limits limits = limits_of(prepare(world, points, q, lambda, s), settings.tolerance);
+    const Limits limits =
+        limits_of(prepare(world, points, q, lambda, s, scaling), settings.tolerance);
     std::vector<double>& mu = s.mu;
     const std::vector<double>& q_hat = s.scaled_q;
     MprgpResult result;

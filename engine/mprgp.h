@@ -120,8 +120,15 @@ struct MprgpResult : PgsResult {
 // its solutions are beyond what the rounding lets the iteration compute.
 //
 // Deterministic: fixed order, only + - * / sqrt, no threads.
+//
+// `scaling`: by_size scales the diagonal above diagonal_scaling_points
+// points only; diagonal scales it whatever the size (island_lcp.cpp's retry
+// of a small island found unbounded, whose masses may span more than the
+// unscaled iteration resolves).
+enum class MprgpScaling { by_size, diagonal };
 MprgpResult solve_mprgp(const World& world, const std::vector<ContactPoint>& points,
                         const std::vector<double>& q, std::vector<double>& lambda,
-                        const PgsSettings& settings, MprgpScratch& scratch);
+                        const PgsSettings& settings, MprgpScratch& scratch,
+                        MprgpScaling scaling = MprgpScaling::by_size);
 
 } // namespace impulse

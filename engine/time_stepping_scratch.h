@@ -37,6 +37,7 @@ struct IslandProblem {
     std::vector<ContactPoint> sorted_points;
     std::vector<double> sorted_q;
     std::vector<double> sorted_lambda;
+    std::vector<double> scaled_lambda; // a retry with diagonal scaling (island_lcp.cpp)
     PgsScratch pgs;
     MprgpScratch mprgp;
 };

@@ -63,6 +63,10 @@ struct WorkCounters {
     // Holding solves taken again, tightly, because their loose answer would
     // have carried a pair through itself (time_stepping.cpp, crossing).
     long long holding_solved_again = 0;
+    // Small islands MPRGP found unbounded, tried again with diagonal scaling,
+    // and of those the ones that converged (island_lcp.cpp, run_mprgp).
+    long long unbounded_rescaled = 0;
+    long long unbounded_rescaled_solved = 0;
     // resting_method automatic: the index of the first step taken by
     // time-stepping (steps before it were events), or -1 while events carry the scene.
     long long time_stepping_from_step = -1;
