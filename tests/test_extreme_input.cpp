@@ -61,6 +61,22 @@ std::string ball_solver(const std::string& keys) {
                      R"("solver": {"integrator": "verlet", )" + keys + "}");
 }
 
+// Four gas bodies in a room with no gravity: `solver` (a line, or empty) and
+// `more` gas keys after max_speed.
+std::string gas_scene(const std::string& solver, const std::string& more) {
+    return R"({
+  "schema": "impulse/scene@1",
+  "name": "drop-box",
+  "gravity": [0, 0],
+  "dt": 0.01,
+  "duration": 0.05,
+)" + solver +
+           R"(  "gas": {"count": 4, "shape": {"circle": 0.1}, "mass": 1, "spacing": 0.5, "max_speed": 1)" +
+           more + R"(}
+}
+)";
+}
+
 // `run` of a scene the rules accept: exit 0, nothing on stderr.
 void require_runs(const std::string& text) {
     const TempDir dir;
@@ -182,15 +198,7 @@ TEST_CASE("Walls thinner than twice the contact band are exit 2 at the block's w
           "[extreme-input]") {
     // A wall's inradius is half its thickness; it must be above
     // contact_tolerance (1e-9 m by default).
-    const std::string gas = R"({
-  "schema": "impulse/scene@1",
-  "name": "drop-box",
-  "gravity": [0, 0],
-  "dt": 0.01,
-  "duration": 0.05,
-  "gas": {"count": 4, "shape": {"circle": 0.1}, "mass": 1, "spacing": 0.5, "max_speed": 1, "wall_thickness": 1e-300}
-}
-)";
+    const std::string gas = gas_scene("", R"(, "wall_thickness": 1e-300)");
     const std::vector<BadFile> cases = {
         bad_text(
             "pile walls 1e-300 m thick", pile_value("seed", "1, \"wall_thickness\": 1e-300"),
@@ -271,16 +279,10 @@ TEST_CASE("A first step's travel time-stepping cannot hold is exit 2 at the spee
     const std::string time_stepping = R"("resting": true, "resting_method": "time-stepping")";
     const std::string ts_ball = ball_solver(time_stepping);
     const std::string within = "only for a step's travel within 281474.976710656 m";
-    const std::string gas = R"({
-  "schema": "impulse/scene@1",
-  "name": "drop-box",
-  "gravity": [0, 0],
-  "dt": 0.01,
-  "duration": 0.05,
-  "solver": {"integrator": "verlet", "resting": true, "stepping": "local"},
-  "gas": {"count": 4, "shape": {"circle": 0.1}, "mass": 1, "spacing": 0.5, "max_speed": 1}
-}
-)";
+    const std::string gas =
+        gas_scene(R"(  "solver": {"integrator": "verlet", "resting": true, "stepping": "local"},
+)",
+                  "");
     const std::vector<BadFile> cases = {
         // These stopped at t = 0 with "use a smaller dt", which cannot help
         // at 1e20 m/s (1e18 m per step).
