@@ -181,7 +181,10 @@ double unit_of(const std::vector<double>& A, std::size_t n) {
     if (!(largest > 0.0) || !std::isfinite(largest)) {
         return 1.0;
     }
-    return std::ldexp(1.0, -std::ilogb(largest));
+    // A diagonal below 2^-1023 (a body near the largest double's mass, with
+    // no gravity to refuse its weight) has no power of two to bring it up.
+    const double unit = std::ldexp(1.0, -std::ilogb(largest));
+    return std::isfinite(unit) ? unit : 1.0;
 }
 
 LcpSolution solve_unit_lcp(const std::vector<double>& A, const std::vector<double>& q,
