@@ -165,12 +165,6 @@ class TimeStep {
           v_rest_(std::max(rest_speed(world), world.solver.contact_tolerance / h)) {}
 
     std::optional<StepError> run();
-    // v_rest_: an approach slower than d / h closes less than the contact
-    // tolerance within the step, so it is touching, not an impact, whatever
-    // gravity gives. Found by an outside review: with no gravity sqrt(2 |g| d)
-    // is 0, and two discs moving on together after an impact at e = 0 had
-    // their approach of rounding size, 1e-16 m/s, recorded as a collision in
-    // every step.
 
   private:
     // Retries of a step whose impacts carried a body beyond its reach.
@@ -193,6 +187,12 @@ class TimeStep {
     double h_;
     std::vector<CollisionEvent>& events_;
     double d_;
+    // The rest speed, never below d / h: an approach slower than that closes
+    // less than the contact tolerance within the step, so it is touching, not
+    // an impact, whatever gravity gives. Found by an outside review: with no
+    // gravity sqrt(2 |g| d) is 0, and two discs moving on together after an
+    // impact at e = 0 had their approach of rounding size, 1e-16 m/s,
+    // recorded as a collision in every step.
     double v_rest_;
     bool retrying_ = false; // solving again after an attempt outran a reach
     // hold()'s point whose answer, even solved again tightly, carries it
