@@ -208,7 +208,8 @@ TEST_CASE("An engine whose output is not a trajectory is an error naming the JSO
     const std::string output = "engine 'fake' on " + p.victim_file + ": output";
     SECTION("garbage") {
         p.victim_runs({"python3", fake_engine, "garbage"});
-        require_failure_everywhere(p, output + ": not valid JSON");
+        require_failure_everywhere(p, output + ": begins with \"Segmentation fault? no: this is "
+                                               "not JSON\", not with a trajectory's \"{\"");
     }
     SECTION("a wrong column") {
         const fs::path file =
@@ -253,6 +254,20 @@ TEST_CASE("An engine that refuses a scene it was blessed on fails the gate, nami
     CHECK(has(checked.out, "2 scenes: 1 passed, 1 failed, 0 errors"));
     CHECK(has(slurp(p.dir / "junit.xml"), "<failure"));
     CHECK(fs::exists(p.golden("victim")));
+
+    // Blessing cannot make that gate pass, so it refuses, writes nothing and
+    // says what would (found by a helper: bless said "1 skipped", exit 0,
+    // and check stayed red).
+    const std::string golden = slurp(p.golden("victim"));
+    const Outcome blessed = run_tool_in(p.dir, {"bless"});
+    require_exit(blessed, 1);
+    CHECK(has(blessed.out, "REFUSED    victim: unsupported by fake: balls are not modelled, but "
+                           "its golden "));
+    CHECK(has(blessed.out, "delete the golden if fake no longer models this scene"));
+    CHECK(slurp(p.golden("victim")) == golden);
+    fs::remove(p.golden("victim"));
+    require_exit(run_tool_in(p.dir, {"bless"}), 0);
+    require_exit(run_tool_in(p.dir, {"check"}), 0);
 }
 
 TEST_CASE("An engine that refuses a scene with no golden is a SKIPPED row, exit 0, a JUnit skip "

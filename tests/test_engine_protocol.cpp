@@ -378,12 +378,25 @@ TEST_CASE("an engine's output is read as strictly as a scene", "[engine-protocol
                   .rfind(output + " frames[1][5]: -Infinity is not a finite number", 0) == 0);
     }
     SECTION("garbage and nothing") {
-        CHECK(refusal(fake({"garbage"}), f.fall).rfind(output + ": not valid JSON", 0) == 0);
+        CHECK(refusal(fake({"garbage"}), f.fall).rfind(output + ": begins with \"", 0) == 0);
         CHECK(refusal(fake({"empty"}), f.fall).rfind(output + ": is empty", 0) == 0);
         CHECK(refusal(f.replaying(" [1, 2]"), f.fall) ==
               output + ": the top level must be a JSON object (a trajectory), got an array");
         CHECK(refusal(f.replaying("42"), f.fall) ==
               output + ": the top level must be a JSON object (a trajectory), got 42");
+    }
+    SECTION("text before or after the trajectory: standard output holds the trajectory alone") {
+        const std::string trajectory =
+            engine_text(run_scene(f.fall), {"digest", "scene_sha256", "scene"});
+        CHECK(refusal(f.replaying("DEBUG: step 1\n" + trajectory), f.fall) ==
+              output + ": begins with \"DEBUG: step 1\", not with a trajectory's \"{\" "
+                       "(standard output must hold only the trajectory; write anything else to "
+                       "standard error)");
+        const std::string after = refusal(f.replaying(trajectory + "\ndone.\n"), f.fall);
+        CHECK(after.rfind(output + ": not valid JSON: ", 0) == 0);
+        CHECK(after.find("(text follows the trajectory: standard output must hold only the "
+                         "trajectory; write anything else to standard error)") !=
+              std::string::npos);
     }
     SECTION("a wrong, a missing and an extra column") {
         const auto columns = [&](std::vector<std::string> names) {

@@ -12,6 +12,7 @@
 #include "trajectory_fields.h"
 #include "trajectory_stream.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -73,6 +74,31 @@ InputError output_error(const std::string& label, const std::string& path,
     return InputError(label, path.empty() ? "output" : "output " + path, message);
 }
 
+// A syntax error caused by text around the trajectory (a debug print before
+// or after it) says so and shows how the output begins. Found by a helper
+// writing an engine: "line 1, column 1: invalid literal" did not say that
+// standard output must hold the trajectory alone.
+std::string with_stray_text(const std::string& text, const std::string& message) {
+    const std::string only = "standard output must hold only the trajectory; write anything "
+                             "else to standard error";
+    const std::size_t first = text.find_first_not_of(" \t\r\n");
+    if (text[first] != '{') {
+        constexpr std::size_t shown_chars = 40;
+        std::string begins = text.substr(first, std::min(shown_chars, text.size() - first));
+        begins = begins.substr(0, begins.find('\n'));
+        for (char& c : begins) {
+            const auto byte = static_cast<unsigned char>(c);
+            c = byte < 0x20 || byte == 0x7f ? '?' : c;
+        }
+        return "begins with \"" + printable_path(begins) + "\", not with a trajectory's \"{\" (" +
+               only + ")";
+    }
+    if (message.find("expected end of input") != std::string::npos) {
+        return message + " (text follows the trajectory: " + only + ")";
+    }
+    return message;
+}
+
 // The stream, its syntax errors named as the engine's output.
 StreamedDocument stream_output(const std::string& text, const std::string& label) {
     if (text.find_first_not_of(" \t\r\n") == std::string::npos) {
@@ -97,6 +123,8 @@ StreamedDocument stream_output(const std::string& text, const std::string& label
             if (!token.empty()) {
                 message = token + " is not a finite number (JSON has no " + token +
                           "; write a number, or exit 3 if the scene is beyond the engine)";
+            } else {
+                message = with_stray_text(text, message);
             }
         }
         throw output_error(label, error.json_path(), message);

@@ -21,6 +21,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Said of a scene the engine refuses while a golden of it holds a run: the
+// engine stopped running what it ran, which check fails and bless refuses.
+std::string still_blessed(const std::string& golden_file, const EngineSpec& engine) {
+    return ", but its golden " + printable_path(golden_file) +
+           " holds a run of it; delete the golden if " + engine.name +
+           " no longer models this scene";
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -192,9 +200,7 @@ SceneCheck check_scene(const Project& project, const EngineSpec& engine,
             // the gate is there to catch (one refusing every scene passed).
             if (entry_exists(check.golden_file)) {
                 check.status = SceneCheck::Status::failed;
-                check.message += ", but its golden " + printable_path(check.golden_file) +
-                                 " holds a run of it; delete the golden if " + engine.name +
-                                 " no longer models this scene";
+                check.message += still_blessed(check.golden_file, engine);
             } else {
                 check.status = SceneCheck::Status::skipped;
             }
@@ -298,7 +304,15 @@ Blessing prepare_blessing(const Project& project, const EngineSpec& engine,
     blessing.golden_folder = golden_folder(project, engine);
     const std::optional<Trajectory> ran = run_in(engine, scene, blessing.summary);
     if (!ran) {
-        blessing.outcome = Blessing::Outcome::skipped;
+        // A golden of a run the engine now refuses is one check fails: no
+        // blessing can make the gate pass, so it is refused, not skipped
+        // (found by a helper: regen said "1 skipped" with exit 0 and check
+        // stayed red).
+        const bool blessed = entry_exists(blessing.golden_file);
+        blessing.outcome = blessed ? Blessing::Outcome::refused : Blessing::Outcome::skipped;
+        if (blessed) {
+            blessing.summary += still_blessed(blessing.golden_file, engine) + "\n";
+        }
         return blessing;
     }
     const Trajectory& trajectory = *ran;
