@@ -5,6 +5,7 @@
 // top of the stream, against the scene the engine was given.
 #include "engine_output.h"
 
+#include "engine_process.h"
 #include "memory_budget.h"
 #include "number_format.h"
 #include "strict_json.h"
@@ -12,7 +13,6 @@
 #include "trajectory_fields.h"
 #include "trajectory_stream.h"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -83,15 +83,11 @@ std::string with_stray_text(const std::string& text, const std::string& message)
                              "else to standard error";
     const std::size_t first = text.find_first_not_of(" \t\r\n");
     if (text[first] != '{') {
+        // Its first line, printable and cut as an engine's message is.
         constexpr std::size_t shown_chars = 40;
-        std::string begins = text.substr(first, std::min(shown_chars, text.size() - first));
-        begins = begins.substr(0, begins.find('\n'));
-        for (char& c : begins) {
-            const auto byte = static_cast<unsigned char>(c);
-            c = byte < 0x20 || byte == 0x7f ? '?' : c;
-        }
-        return "begins with \"" + printable_path(begins) + "\", not with a trajectory's \"{\" (" +
-               only + ")";
+        const std::string line = text.substr(first, text.find('\n', first) - first);
+        return "begins with \"" + last_line(line, shown_chars) +
+               "\", not with a trajectory's \"{\" (" + only + ")";
     }
     if (message.find("expected end of input") != std::string::npos) {
         return message + " (text follows the trajectory: " + only + ")";
