@@ -14,6 +14,8 @@
 
 #include "lcp.h"
 
+#include "impulse_unit.h"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -167,26 +169,17 @@ int popcount(unsigned long long mask) {
     return count;
 }
 
-// The power of two that brings A's largest diagonal entry into [1, 2), or 1.
-// Found by an outside review: in a pile of density 1e200, A's entries near
-// 1e-200 made a 2 x 2 block's products underflow to 0 (a "singular" block)
-// and no solution was found. Scaled by a power of two, A lambda is unchanged
-// and lambda scales exactly, so wherever nothing underflowed or overflowed the
-// answer has the bits of the unscaled solve.
+// impulse_unit.h's delassus_unit for A: scaled by a power of two, A lambda
+// is unchanged and lambda scales exactly (in a pile of density 1e200, A's
+// entries near 1e-200 made a 2 x 2 block's products underflow to 0, a
+// "singular" block, and no solution was found).
 double unit_of(const std::vector<double>& A, std::size_t n) {
     double largest = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
         largest = std::max(largest, A[i * n + i]);
     }
-    if (!(largest > 0.0) || !std::isfinite(largest)) {
-        return 1.0;
-    }
-    // A diagonal below 2^-1023 (a body near the largest double's mass, with
-    // no gravity to refuse its weight) has no power of two to bring it up.
-    const double unit = std::ldexp(1.0, -std::ilogb(largest));
-    return std::isfinite(unit) ? unit : 1.0;
+    return delassus_unit(largest);
 }
-
 LcpSolution solve_unit_lcp(const std::vector<double>& A, const std::vector<double>& q,
                            const LcpSettings& settings);
 

@@ -95,7 +95,7 @@ struct MprgpResult : PgsResult {
 // magnitude; the scaling removes that part of cond A (docs/engine.md).
 // Islands of at most diagonal_scaling_points points are solved unscaled
 // with one common scale, a power of two (the bits of the unscaled iteration,
-// exactly rescaled; mprgp.cpp, impulse_unit): see that constant.
+// exactly rescaled; impulse_unit.h, row_unit): see that constant.
 //
 // ||A^|| is bounded exactly and cheaply, never estimated: with s_ib the M^-1
 // norm of point i's scaled row of J on its body b and S_b the sum of s over
