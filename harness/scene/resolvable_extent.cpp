@@ -23,6 +23,18 @@ double resolvable_extent(double contact_tolerance) {
     return contact_tolerances_across * contact_tolerance;
 }
 
+namespace {
+
+// The clause every refusal below shares: "positions resolve ... of it (why); ".
+std::string resolvable_clause(double contact_tolerance) {
+    return "positions resolve the contact tolerance only within " +
+           number_text(resolvable_extent(contact_tolerance)) +
+           " m of it (2^48 times solver.contact_tolerance " + number_text(contact_tolerance) +
+           " m: a double holds x to within x 2^-52); ";
+}
+
+} // namespace
+
 // Further out, touching is decided by rounding: behind 1e17 m of wall a
 // wall's face moves by metres, and a box 1e154 m wide squares to infinity in
 // the narrow phase, so the run stops with NaN positions after writing a
@@ -36,11 +48,8 @@ void refuse_unresolvable_extent(const Node& block, const std::string& key, const
     // The key is named even when absent: its default is what to change then.
     json_fields::fail(json_member_path(block.path(), key),
                       "gives " + box + " reaching " + number_text(extent) +
-                          " m from the origin, walls included, but positions resolve the contact "
-                          "tolerance only within " +
-                          number_text(limit) + " m of it (2^48 times solver.contact_tolerance " +
-                          number_text(contact_tolerance) +
-                          " m: a double holds x to within x 2^-52); " + cure);
+                          " m from the origin, walls included, but " +
+                          resolvable_clause(contact_tolerance) + cure);
 }
 
 // A polygon's vertices, by the same rule, before it is recentred: given 1e8 m
@@ -58,14 +67,10 @@ void refuse_unresolvable_vertices(const Node& node, const Polygon& polygon,
     if (reach <= limit) {
         return;
     }
-    node.fail("has vertices " + number_text(reach) +
-              " m from the body's origin, but positions resolve the contact tolerance only "
-              "within " +
-              number_text(limit) + " m of it (2^48 times solver.contact_tolerance " +
-              number_text(contact_tolerance) +
-              " m: a double holds x to within x 2^-52); give the vertices about the "
-              "polygon's own centre (that centre in the body's position), or raise "
-              "solver.contact_tolerance");
+    node.fail("has vertices " + number_text(reach) + " m from the body's origin, but " +
+              resolvable_clause(contact_tolerance) +
+              "give the vertices about the polygon's own centre (that centre in the body's "
+              "position), or raise solver.contact_tolerance");
 }
 
 // Listed bodies, by the same rule: found by an outside review, the canonical
@@ -84,12 +89,9 @@ void refuse_unresolvable_bodies(const Node& listed, const Scene& scene) {
         }
         listed.element(i)
             .member("position")
-            .fail("puts the body " + number_text(reach) +
-                  " m from the origin, but positions resolve the contact tolerance only within " +
-                  number_text(limit) + " m of it (2^48 times solver.contact_tolerance " +
-                  number_text(scene.solver.contact_tolerance) +
-                  " m: a double holds x to within x 2^-52); move the scene nearer the origin, or "
-                  "raise solver.contact_tolerance");
+            .fail("puts the body " + number_text(reach) + " m from the origin, but " +
+                  resolvable_clause(scene.solver.contact_tolerance) +
+                  "move the scene nearer the origin, or raise solver.contact_tolerance");
     }
 }
 

@@ -10,16 +10,6 @@
 
 namespace impulse::harness {
 
-// A body resting in a time-stepping island gets gravity's kick |g| dt each
-// step and a contact impulse that cancels it (docs/engine.md, "Dense
-// contact"): its new velocity is the difference of two numbers of size
-// |g| dt, held to within |g| dt 2^-52, so its position drifts by up to
-// |g| dt^2 2^-52 per step. Within 2^48 contact tolerances (the box's limit,
-// resolvable_extent.cpp) that is 1/16 of the tolerance or less; beyond it
-// the contact cannot hold a body to its tolerance, and at 1e200 m/s^2 the
-// first step left pairs 0.29 m deep and every energy NaN. The event model
-// ("events") has no such cancellation and is bounded by the tunnelling
-// refusal instead.
 namespace {
 
 bool holds_by_time_stepping(const SolverSettings& solver) {
@@ -53,6 +43,16 @@ void refuse_travel(const Scene& scene, const std::string& path, const std::strin
 
 } // namespace
 
+// A body resting in a time-stepping island gets gravity's kick |g| dt each
+// step and a contact impulse that cancels it (docs/engine.md, "Dense
+// contact"): its new velocity is the difference of two numbers of size
+// |g| dt, held to within |g| dt 2^-52, so its position drifts by up to
+// |g| dt^2 2^-52 per step. Within 2^48 contact tolerances (the box's limit,
+// resolvable_extent.cpp) that is 1/16 of the tolerance or less; beyond it
+// the contact cannot hold a body to its tolerance, and at 1e200 m/s^2 the
+// first step left pairs 0.29 m deep and every energy NaN. The event model
+// ("events") has no such cancellation and is bounded by the tunnelling
+// refusal instead.
 void refuse_unresolvable_step_fall(const Scene& scene) {
     const SolverSettings& solver = scene.solver;
     if (!holds_by_time_stepping(solver)) {
