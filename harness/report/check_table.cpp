@@ -35,19 +35,28 @@ std::string row_name(const SceneCheck& check) {
     return check.engine.empty() ? check.name : check.engine + "/" + check.name;
 }
 
-std::string row(const SceneCheck& c, std::size_t width) {
-    // SKIPPED is the one word longer than the column: one space still parts it.
-    std::string text = "  " + padded(row_word(c.status), 7) +
-                       (c.status == Status::skipped ? " " : "") +
-                       padded(printable_path(row_name(c)), width + 2);
+bool shown_when_quiet(const SceneCheck& c) {
+    return c.status == Status::failed || c.status == Status::error;
+}
+
+// The status column: the widest word shown and one space, so every row's
+// name starts in the same column; 7 without a SKIPPED row, as it always was.
+std::size_t word_width(const std::vector<SceneCheck>& checks, bool quiet) {
+    for (const SceneCheck& c : checks) {
+        if (c.status == Status::skipped && (!quiet || shown_when_quiet(c))) {
+            return 8;
+        }
+    }
+    return 7;
+}
+
+std::string row(const SceneCheck& c, std::size_t word, std::size_t width) {
+    std::string text =
+        "  " + padded(row_word(c.status), word) + padded(printable_path(row_name(c)), width + 2);
     if (c.status == Status::passed) {
         return text + fixed_text(c.seconds, 3) + " s\n";
     }
     return text + c.message + "\n";
-}
-
-bool shown_when_quiet(const SceneCheck& c) {
-    return c.status == Status::failed || c.status == Status::error;
 }
 
 } // namespace
@@ -67,10 +76,11 @@ std::string check_table(const std::vector<SceneCheck>& checks, bool quiet) {
             width = std::max(width, printable_path(row_name(c)).size());
         }
     }
+    const std::size_t word = word_width(checks, quiet);
     std::string out;
     for (const SceneCheck& c : checks) {
         if (!quiet || shown_when_quiet(c)) {
-            out += row(c, width);
+            out += row(c, word, width);
         }
     }
     if (quiet) {
