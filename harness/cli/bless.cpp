@@ -6,6 +6,7 @@
 #include "progress.h"
 #include "project_options.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <ostream>
@@ -136,9 +137,11 @@ struct Prepared {
 
 struct Preparation {
     std::vector<Prepared> ready;
-    // Scenes that refuse to be blessed: broken ones (with their sentence
-    // printed already) and those that break their own expectations.
+    // Scenes that hold the writing back: those refused (they break their
+    // own expectations) and broken ones (not loaded or not run, their
+    // sentence printed already), in the order met.
     std::vector<std::string> refusing;
+    std::vector<std::string> failing; // the broken ones among them
     int broken = 0;
 };
 
@@ -164,6 +167,7 @@ Preparation prepare_all(const Project& project, const std::vector<EngineSpec>& e
             } catch (const InputError& e) {
                 ++p.broken;
                 p.refusing.push_back(several ? engine.name + "/" + stem : stem);
+                p.failing.push_back(p.refusing.back());
                 progress.without_bar([&] { err << e.what() << "\n" << std::flush; });
             }
             progress.advance();
@@ -183,6 +187,26 @@ std::string listed(const std::vector<std::string>& names) {
 
 bool would_write(const Blessing& b) {
     return b.outcome == Blessing::Outcome::created || b.outcome == Blessing::Outcome::changed;
+}
+
+// "a refuses to be blessed", "b could not be loaded or run (its error above)", or both
+// joined: a scene whose engine crashed was not refused by its expectations.
+std::string why_held(const Preparation& p) {
+    std::vector<std::string> refused;
+    for (const std::string& name : p.refusing) {
+        if (std::find(p.failing.begin(), p.failing.end(), name) == p.failing.end()) {
+            refused.push_back(name);
+        }
+    }
+    std::string why;
+    if (!refused.empty()) {
+        why = listed(refused) + (refused.size() == 1 ? " refuses" : " refuse") + " to be blessed";
+    }
+    if (!p.failing.empty()) {
+        why += (why.empty() ? "" : " and ") + listed(p.failing) + " could not be loaded or run (" +
+               (p.failing.size() == 1 ? "its error" : "their errors") + " above)";
+    }
+    return why;
 }
 
 // Writes the prepared goldens, or, when a scene refuses and `partial` is
@@ -209,10 +233,9 @@ BlessCounts write_prepared(Preparation& p, bool partial, std::ostream& out, std:
         }
     }
     if (hold) {
-        out << "no golden was written: " << listed(p.refusing)
-            << (p.refusing.size() == 1 ? " refuses" : " refuse") << " to be blessed, and " << held
-            << " other golden" << (held == 1 ? " stays as it was" : "s stay as they were")
-            << "; fix the refusing scenes, or write the others with --partial\n";
+        out << "no golden was written: " << why_held(p) << ", and " << held << " other golden"
+            << (held == 1 ? " stays as it was" : "s stay as they were")
+            << "; fix them, or write the others with --partial\n";
     } else if (!p.refusing.empty()) {
         int written = counts.created + counts.changed;
         out << "--partial: " << written << " golden" << (written == 1 ? " was" : "s were")
