@@ -129,9 +129,33 @@ constexpr double relative_residual = 1e-3;
 // carry a pair through itself: the overlap guard's (overlap_guard.h).
 constexpr int crossing_cap_factor = guard_cap_factor;
 
-StepError unsolved(const IslandProblem& problem, double t0) {
+// An island's failure, naming the pair `a`, `b` and the island's heaviest and
+// lightest dynamic bodies (StepError).
+StepError island_failure(const World& world, const IslandProblem& problem, StepFailure failure,
+                         double t0, int a, int b) {
+    StepError error{failure, t0, a, b};
+    for (const ContactPoint& point : problem.points) {
+        for (const int i : {point.a, point.b}) {
+            const double inv_mass = world.bodies[static_cast<std::size_t>(i)].inv_mass;
+            if (inv_mass == 0.0) {
+                continue; // static
+            }
+            const auto at = [](int k) { return static_cast<std::size_t>(k); };
+            if (error.heaviest < 0 || inv_mass < world.bodies[at(error.heaviest)].inv_mass) {
+                error.heaviest = i;
+            }
+            if (error.lightest < 0 || inv_mass > world.bodies[at(error.lightest)].inv_mass) {
+                error.lightest = i;
+            }
+        }
+    }
+    return error;
+}
+
+StepError unsolved(const World& world, const IslandProblem& problem, double t0) {
     const ContactPoint& named = problem.points.front();
-    return {StepFailure::contact_problem_unsolved, t0, named.a, named.b};
+    return island_failure(world, problem, StepFailure::contact_problem_unsolved, t0, named.a,
+                          named.b);
 }
 
 // The first point of a holding problem whose applied answer carries it past
@@ -359,7 +383,7 @@ std::optional<StepError> TimeStep::island(int i) {
     const int b1 = s_.islands.body_offsets[static_cast<std::size_t>(i) + 1];
     bool pushed = false;
     if (!impacts(first, last, pushed)) {
-        return unsolved(s_.problem, t0_);
+        return unsolved(world_, s_.problem, t0_);
     }
     for (int k = b0; k < b1; ++k) { // gravity's kick, v' + h M^-1 f
         BodyState& state =
@@ -368,10 +392,11 @@ std::optional<StepError> TimeStep::island(int i) {
         state.velocity += h_ * world_.gravity;
     }
     if (!hold(first, last, pushed)) {
-        return unsolved(s_.problem, t0_);
+        return unsolved(world_, s_.problem, t0_);
     }
     if (crossed_ != nullptr) {
-        return StepError{StepFailure::contact_pass_through, t0_, crossed_->a, crossed_->b};
+        return island_failure(world_, s_.problem, StepFailure::contact_pass_through, t0_,
+                              crossed_->a, crossed_->b);
     }
     s_.island_pushed[static_cast<std::size_t>(i)] = pushed ? 1 : 0;
     for (int k = b0; k < b1; ++k) {

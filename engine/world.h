@@ -167,6 +167,13 @@ struct StepError {
     double time = 0.0;
     int body_a = -1;
     int body_b = -1;
+    // Time-stepping's island failures (contact_problem_unsolved,
+    // contact_pass_through): the heaviest and the lightest dynamic body of the
+    // island, -1 otherwise. Rounding alone can leave a problem unsolved whose
+    // masses span more digits than a double carries (docs/engine.md, "Mass
+    // ratios in one island"), and a message then names them.
+    int heaviest = -1;
+    int lightest = -1;
 };
 
 // Advances the world from time t0 by dt, appending every resolved collision to
