@@ -130,21 +130,6 @@ IslandSolve solve_by_mprgp(World& world, IslandProblem& p, double tolerance, int
     return finish(world, run_mprgp(world, p, tolerance, product_cap(world, cap_factor)));
 }
 
-// MPRGP to the tight tolerance within its budget, then on from that answer
-// (a warm start that already meets the relaxed tolerance costs one product).
-IslandSolve solve_by_mprgp(World& world, IslandProblem& p, const RelaxingTolerance& tolerance) {
-    const int cap = product_cap(world, 1);
-    if (!(tolerance.relaxed > tolerance.tight)) {
-        return finish(world, run_mprgp(world, p, tolerance.tight, cap));
-    }
-    const MprgpResult tight =
-        run_mprgp(world, p, tolerance.tight, std::min(tolerance.relax_after, cap));
-    if (tight.converged || tight.unbounded || tight.sweeps >= cap) {
-        return finish(world, tight);
-    }
-    return finish(world, run_mprgp(world, p, tolerance.relaxed, cap - tight.sweeps));
-}
-
 } // namespace
 
 IslandSolve solve_island(World& world, IslandProblem& problem, double tolerance, int cap_factor) {
@@ -162,13 +147,6 @@ IslandSolve solve_island(World& world, IslandProblem& problem, double tolerance,
         return solve_iteratively(world, problem, tolerance);
     }
     return solve_by_mprgp(world, problem, tolerance, cap_factor);
-}
-
-IslandSolve solve_island(World& world, IslandProblem& problem, const RelaxingTolerance& tolerance) {
-    if (problem.points.size() <= direct_solve_points || iterative_solver == IterativeSolver::pgs) {
-        return solve_island(world, problem, tolerance.tight);
-    }
-    return solve_by_mprgp(world, problem, tolerance);
 }
 
 } // namespace impulse

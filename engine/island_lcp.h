@@ -41,20 +41,4 @@ struct IslandSolve {
 IslandSolve solve_island(World& world, IslandProblem& problem, double tolerance,
                          int cap_factor = 1);
 
-// The residual an iterative solve stops at: `tight`, or, once `relax_after`
-// products have not reached it, `relaxed` (never below `tight`) for the rest
-// of the cap. The holding step's budget (time_stepping.cpp).
-struct RelaxingTolerance {
-    double tight = 0.0;
-    double relaxed = 0.0;
-    int relax_after = 0;
-};
-
-// solve_island with a tolerance that relaxes: a pivoting solve is exact
-// whatever the tolerance, and the iterative solve is MPRGP's, run to `tight`
-// for at most `relax_after` products and, if it is not there, on from its
-// answer to `relaxed`. Counted as unconverged only when the cap stops it
-// short of `relaxed`.
-IslandSolve solve_island(World& world, IslandProblem& problem, const RelaxingTolerance& tolerance);
-
 } // namespace impulse

@@ -99,31 +99,26 @@ constexpr double contact_residual_fraction = 1.0 / 32.0;
 // boxes sink by up to 2.3e-9 m, where d / h and d / 2h leave the impulses
 // exact to 1e-12; the cause is not found yet.
 constexpr std::size_t tight_residual_points = 20;
-// The holding solve's budget at that residual: an island above
-// diagonal_scaling_points that has not reached d / 32h within this many
-// products goes on to a residual of relative_residual times its fastest
-// approach speed at the step's start, |u_i| (never below d / 32h). A pile
-// that settles gets there: the islands of a falling disc pile converge within
-// a few hundred products, and at rest u = 0 keeps d / 32h. A pile whose
-// islands jam (mixed boxes) does not, and spent up to the 2,000-product cap
-// on digits the first-order step does not hold: its own error is |g| h per
-// step, and relative_residual |u| h is a thousandth of the distance the
-// fastest point closes in the step, which the overlap guard takes out if it
-// ends deeper than d, while the energy guard removes any gain. Measured,
-// 8 s of pile-boxes-100 at seeds 1 to 7: 3.24 million products in all ->
-// 2.21 million (6 seeds of 7 cheaper), solves stopped by the cap 532 -> 11;
-// 3 s of pile-boxes-1000: 1.31 -> 0.91 million. With no budget (the
-// relative residual from the first product) box piles fell further (1.42
-// million; 0.76), but a falling 1000-disc pile's holding solves, which
-// converge anyway, then left overlaps for the guard: 270 -> 421 products
-// per step over its first 3 s (with the budget: 292). Islands of at most
-// diagonal_scaling_points keep d / 32h to the cap: relaxed there too, one
-// of the 37-body piles of dense.sweep (e = 0.3) was still moving at its 60 s
-// rest budget (a frictionless pile's rest is chaotic in its solution), and
-// no canonical scene's island reaches the budget. A fixed coarser residual
-// (d / h to 1000 d / h) made the settled disc pile cost 6 to 25 times as much
-// per step (docs/engine.md).
-constexpr int tight_residual_products = 300;
+// An island above diagonal_scaling_points stops at relative_residual times
+// its fastest approach speed at the step's start, |u_i|, when that is coarser
+// than d / 32h: the step is first order (its own error is |g| h per step), so
+// digits of the holding answer far below the motion are not physics, and
+// relative_residual |u| h is a thousandth of the distance the fastest point
+// closes in the step; the overlap guard takes out whatever ends deeper than
+// d, and the energy guard any gain. At rest u = 0 keeps d / 32h. Going to
+// d / 32h first, for up to 300 products, was measured and dropped: in a
+// creeping box pile every holding solve spent exactly those 300 and then
+// stopped at the relaxed residual anyway. Counted in products the budget
+// looked right for a falling disc pile (without it the guard took 421
+// products per step instead of 292), but a guard product is one over a small
+// group, a holding product one over the whole island: in CPU time no pile
+// measured cost more without it, and 100 boxes cost 45% less
+// (docs/engine.md, "The holding residual of large islands"). Islands of at most
+// diagonal_scaling_points keep d / 32h to the cap: relaxed there too, one of
+// the 37-body piles of dense.sweep (e = 0.3) was still moving at its 60 s
+// rest budget (a frictionless pile's rest is chaotic in its solution). A
+// fixed coarser residual (d / h to 1000 d / h) made the settled disc pile
+// cost 6 to 25 times as much per step (docs/engine.md).
 constexpr double relative_residual = 1e-3;
 // The product cap of a holding solve taken again because its answer would
 // carry a pair through itself: the overlap guard's (overlap_guard.h).
@@ -486,8 +481,8 @@ bool TimeStep::impacts(int first, int last, bool& pushed) {
 // Phase 2, holding: after gravity's kick no point may close more than its gap
 // within the step, w = A lambda + u~ + max(g, 0) / h >= 0 (the velocities
 // already carry the kick), solved to a residual of contact_residual_fraction
-// d / h for an island above tight_residual_points (relaxing after
-// tight_residual_products), d / h below.
+// d / h for an island above tight_residual_points (above
+// diagonal_scaling_points, relative to its motion), d / h below.
 bool TimeStep::hold(int first, int last, bool& pushed) {
     IslandProblem& p = s_.problem;
     p.rows.clear();
@@ -496,10 +491,9 @@ bool TimeStep::hold(int first, int last, bool& pushed) {
     p.lambda.clear();
     const std::size_t points = static_cast<std::size_t>(last - first);
     const bool relaxes = points > diagonal_scaling_points;
-    RelaxingTolerance tolerance;
-    tolerance.tight = (points > tight_residual_points ? contact_residual_fraction : 1.0) * d_ / h_;
-    tolerance.relaxed = tolerance.tight;
-    tolerance.relax_after = tight_residual_products;
+    const double tight =
+        (points > tight_residual_points ? contact_residual_fraction : 1.0) * d_ / h_;
+    double tolerance = tight;
     for (int l = first; l < last; ++l) {
         const int r = s_.islands.links_of[static_cast<std::size_t>(l)];
         p.rows.push_back(r);
@@ -512,8 +506,7 @@ bool TimeStep::hold(int first, int last, bool& pushed) {
         p.q.push_back(u + (gap > 0.0 ? gap : 0.0) / h_);
         p.lambda.push_back(s_.warm[static_cast<std::size_t>(r)]);
         if (relaxes) {
-            tolerance.relaxed =
-                std::max(tolerance.relaxed, relative_residual * std::fabs(point.vn));
+            tolerance = std::max(tolerance, relative_residual * std::fabs(point.vn));
         }
     }
     const IslandSolve solved = solve_island(world_, p, tolerance);
@@ -536,7 +529,7 @@ bool TimeStep::hold(int first, int last, bool& pushed) {
         // held them). Only if that too fails does the step stop.
         restore_velocities();
         ++world_.work.holding_solved_again;
-        const IslandSolve again = solve_island(world_, p, tolerance.tight, crossing_cap_factor);
+        const IslandSolve again = solve_island(world_, p, tight, crossing_cap_factor);
         if (!again.solved || !impulses_finite(p)) {
             return false;
         }
