@@ -129,18 +129,21 @@ constexpr int crossing_cap_factor = guard_cap_factor;
 StepError island_failure(const World& world, const IslandProblem& problem, StepFailure failure,
                          double t0, int a, int b) {
     StepError error{failure, t0, a, b};
+    double least = 0.0; // the inverse masses of the heaviest and the lightest
+    double most = 0.0;
     for (const ContactPoint& point : problem.points) {
         for (const int i : {point.a, point.b}) {
             const double inv_mass = world.bodies[static_cast<std::size_t>(i)].inv_mass;
             if (inv_mass == 0.0) {
                 continue; // static
             }
-            const auto at = [](int k) { return static_cast<std::size_t>(k); };
-            if (error.heaviest < 0 || inv_mass < world.bodies[at(error.heaviest)].inv_mass) {
+            if (error.heaviest < 0 || inv_mass < least) {
                 error.heaviest = i;
+                least = inv_mass;
             }
-            if (error.lightest < 0 || inv_mass > world.bodies[at(error.lightest)].inv_mass) {
+            if (error.lightest < 0 || inv_mass > most) {
                 error.lightest = i;
+                most = inv_mass;
             }
         }
     }

@@ -142,7 +142,6 @@ struct Preparation {
     // sentence printed already), in the order met.
     std::vector<std::string> refusing;
     std::vector<std::string> failing; // the broken ones among them
-    int broken = 0;
 };
 
 // Runs every (engine, scene) pair and decides each golden, writing none;
@@ -165,7 +164,6 @@ Preparation prepare_all(const Project& project, const std::vector<EngineSpec>& e
                 }
                 p.ready.push_back({name, std::move(b)});
             } catch (const InputError& e) {
-                ++p.broken;
                 p.refusing.push_back(several ? engine.name + "/" + stem : stem);
                 p.failing.push_back(p.refusing.back());
                 progress.without_bar([&] { err << e.what() << "\n" << std::flush; });
@@ -214,7 +212,7 @@ std::string why_held(const Preparation& p) {
 // from another would pass the gate for the wrong reason.
 BlessCounts write_prepared(Preparation& p, bool partial, std::ostream& out, std::ostream& err) {
     BlessCounts counts;
-    counts.broken = p.broken;
+    counts.broken = static_cast<int>(p.failing.size());
     const bool hold = !p.refusing.empty() && !partial;
     int held = 0;
     for (Prepared& item : p.ready) {

@@ -17,7 +17,7 @@ namespace {
 
 // The mass ratio within one island beyond which a failure of its contact
 // problem names the masses (ImpulseSimulator::mass_span): 1e8, two decades
-// below the largest ratio measured to settle, so the clause appears wherever
+// below the largest ratio measured to run, so the clause appears wherever
 // rounding may be the cause and nowhere near the 1:100 of the canonical piles.
 constexpr double resolvable_mass_ratio = 1e8;
 
@@ -220,8 +220,8 @@ class ImpulseSimulator final : public Simulator {
     // the heavy ones' scale, and its velocity (impulse over its mass) then
     // carries that rounding times the ratio: measured on the canonical
     // 20-disc pile with one disc's mass times r and another's over r, the
-    // pile settles at a ratio of 1e10 and stops from 1e12 on, whatever dt
-    // (docs/engine.md, "Mass ratios in one island").
+    // run completes at a ratio of 1e10 and stops from 1e12 on at dt = 1/60 s,
+    // from 1e14 on at 1/240 s (docs/engine.md, "Mass ratios in one island").
     std::string mass_span(const StepError& error) const {
         if (error.heaviest < 0 || error.lightest < 0) {
             return "; use ";
@@ -235,7 +235,8 @@ class ImpulseSimulator final : public Simulator {
                body_named(error.heaviest) + ", " + format_double(heavy.mass) + " kg, to " +
                body_named(error.lightest) + ", " + format_double(light.mass) +
                " kg), and the impulses a light body passes on are rounded at the heavy ones' "
-               "scale, which can take more digits than a double holds; bring those masses closer, or use ";
+               "scale, which can take more digits than a double holds; bring those masses closer, "
+               "or use ";
     }
 
     // `around`: " around 'a' and 'b'", or "" when the engine named no pair.
