@@ -168,6 +168,14 @@ TEST_CASE("init --engine-command names the user's engine in the project file, or
               R"({"name": "seed", "command": ["python3", "engine/run.py"], "time_limit": 60})"));
     CHECK(has(o.out, "impulse conform"));
 
+    // A word with a space is quoted as in a shell and kept whole.
+    const fs::path spaced = temp.dir / "spaced";
+    require_exit(impulse::test::run_tool({"init", spaced.string(), "--engine-command",
+                                          "python3 'my engine/run.py' --fast"}),
+                 0);
+    CHECK(has(slurp(spaced / "impulse.json"),
+              R"("command": ["python3", "my engine/run.py", "--fast"])"));
+
     // A name the project file refuses is refused by init, and nothing is left.
     const fs::path other = temp.dir / "other";
     fs::create_directories(other);
@@ -179,11 +187,12 @@ TEST_CASE("init --engine-command names the user's engine in the project file, or
 
     // Into folders that do not exist yet: every folder init made is taken
     // back (an outside review found a/ and a/b/scenes/ left behind), and an
-    // empty --engine-command is refused before any is made.
+    // empty or unclosed --engine-command is refused before any is made.
     const fs::path deep = temp.dir / "new" / "a" / "b";
     for (const std::vector<std::string>& args :
          {std::vector<std::string>{"init", deep.string(), "--engine", "my seed"},
-          std::vector<std::string>{"init", deep.string(), "--engine-command", "  "}}) {
+          std::vector<std::string>{"init", deep.string(), "--engine-command", "  "},
+          std::vector<std::string>{"init", deep.string(), "--engine-command", "node 'a b"}}) {
         const Outcome refused = impulse::test::run_tool(args);
         INFO(refused.err);
         require_exit(refused, 2);

@@ -1,7 +1,8 @@
 #include "engine_option.h"
 
+#include "command_words.h"
+
 #include <algorithm>
-#include <sstream>
 #include <vector>
 
 namespace impulse::harness::cli {
@@ -32,13 +33,7 @@ EngineSpec command_engine(const std::optional<std::string>& name, const std::str
                          "letters, digits, '.', '_' or '-', not impulse, box2d or chipmunk, got '" +
                          spec.name + "'");
     }
-    std::istringstream words(command);
-    for (std::string word; words >> word;) {
-        spec.command.push_back(word);
-    }
-    if (spec.command.empty()) {
-        throw UsageError("--engine-command needs a program to run, got '" + command + "'");
-    }
+    spec.command = command_words(command);
     spec.working_directory = ".";
     spec.origin = "--engine-command";
     return spec;

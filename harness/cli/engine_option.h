@@ -13,7 +13,7 @@ namespace impulse::harness::cli {
 inline constexpr const char* engine_option = "--engine";
 inline constexpr const char* engine_command_option = "--engine-command";
 
-// --engine-command 'PROGRAM ARGS' (split on spaces, run through the engine
+// --engine-command 'PROGRAM ARGS' (split into words as a shell would, run through the engine
 // protocol in the current folder), named by --engine NAME ("external" when
 // not given); else --engine NAME: the project's engine of that name, or the
 // built-in impulse, box2d or chipmunk; else the project's first engine. Throws

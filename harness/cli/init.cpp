@@ -2,13 +2,13 @@
 // scene with an exact answer, so check and bless work there from the start.
 #include "atomic_file.h"
 #include "cli.h"
+#include "command_words.h"
 #include "input_error.h"
 #include "project.h"
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <ostream>
-#include <sstream>
 
 namespace impulse::harness::cli {
 
@@ -28,8 +28,9 @@ See docs/project-file.md and docs/engine-protocol.md.
 
   --engine NAME      the engine's name in impulse.json (default my-engine)
   --engine-command 'PROGRAM ARGS'
-                     your engine's command (split on spaces; run in DIR with the
-                     scene's path appended), instead of the placeholder
+                     your engine's command (split into words as a shell would,
+                     nothing expanded; run in DIR with the scene's path
+                     appended), instead of the placeholder
 
 Exit: 0 written, 2 a file exists or cannot be written.
 )";
@@ -126,14 +127,7 @@ int init_verb(const std::vector<std::string>& args, std::ostream& out, std::ostr
     }
     std::vector<std::string> command{"./my-engine"};
     if (const auto given = a.option("--engine-command")) {
-        std::istringstream words(*given);
-        command.clear();
-        for (std::string word; words >> word;) {
-            command.push_back(word);
-        }
-        if (command.empty()) {
-            throw UsageError("--engine-command needs a program to run, got '" + *given + "'");
-        }
+        command = command_words(*given);
     }
     // The folders init makes, outermost first, so that a refusal can take
     // back every one of them (an outside review's `init a/b --engine "bad
