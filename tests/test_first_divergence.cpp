@@ -1,6 +1,7 @@
 // The one first divergence (harness/gate/first_divergence.h): the earliest
 // value over frames and events, its tie rule, its cause sentence, and every
 // output of the real binary naming the same one.
+#include "check_outcome.h"
 #include "first_divergence.h"
 #include "support/comparing.h"
 #include "support/files.h"
@@ -123,6 +124,34 @@ TEST_CASE("Ties: an event before a frame at the same time, then column order",
         REQUIRE(first);
         CHECK_THAT(first->cause, Catch::StartsWith("collision 2's (events[1]) impulse differs"));
     }
+}
+
+TEST_CASE("When the shapes differ too, the first divergence still comes first, then the shape",
+          "[first-divergence]") {
+    // A changed first impulse that also loses the second bounce: the event
+    // counts differ, and the value that parted the runs is still events[0].
+    Trajectory gold = golden();
+    gold.events.push_back(bounce(0.6, 2.0));
+    const Trajectory value = one_ulp_impulse();
+    const Comparison c = compare(gold, value, std::nullopt);
+    REQUIRE_FALSE(c.structural.empty());
+    const std::string line = first_divergence_line(c);
+    CHECK_THAT(line, Catch::StartsWith("first divergence: events[0].impulse at t = 0.3 s"));
+    CHECK_THAT(line, Catch::Contains("; the trajectories also differ in shape: event counts "
+                                     "differ: golden 2, new 1"));
+    // summary.md and the page (outcome_line) name the same value and shape.
+    SceneCheck check;
+    check.status = SceneCheck::Status::failed;
+    check.comparison = c;
+    const std::string row = outcome_line(check);
+    CHECK_THAT(row, Catch::StartsWith("events[0].impulse at t = 0.3 s"));
+    CHECK_THAT(row, Catch::Contains("event counts differ: golden 2, new 1"));
+
+    // With no compared value different, the shape is the whole line.
+    Trajectory shorter = gold;
+    shorter.events.pop_back();
+    CHECK_THAT(first_divergence_line(compare(gold, shorter, std::nullopt)),
+               Catch::StartsWith("event counts differ: golden 2, new 1"));
 }
 
 TEST_CASE("Scenes that start diverging at the same cause share one line", "[first-divergence]") {

@@ -128,17 +128,25 @@ std::optional<FirstDivergence> first_divergence_of(const Comparison& comparison)
     return first;
 }
 
-std::string first_divergence_line(const Comparison& comparison) {
-    if (!comparison.structural.empty()) {
-        return comparison.structural.front();
+std::string shape_clause(const Comparison& comparison) {
+    if (comparison.structural.empty()) {
+        return "";
     }
+    const std::size_t more = comparison.structural.size() - 1;
+    return "; the trajectories also differ in shape: " + comparison.structural.front() +
+           (more > 0 ? " (and " + std::to_string(more) + " more)" : "");
+}
+
+std::string first_divergence_line(const Comparison& comparison) {
     const std::optional<FirstDivergence> first = first_divergence_of(comparison);
     if (!first) {
-        return "the trajectories differ";
+        return comparison.structural.empty() ? "the trajectories differ"
+                                             : comparison.structural.front();
     }
     const Divergence& d = first->divergence;
     return "first divergence: " + d.column + " at t = " + sentence_number(d.t) + " s (golden " +
-           sentence_number(d.gold) + ", new " + sentence_number(d.value) + "): " + first->cause;
+           sentence_number(d.gold) + ", new " + sentence_number(d.value) + "): " + first->cause +
+           shape_clause(comparison);
 }
 
 std::string cause_key(const Comparison& comparison) {

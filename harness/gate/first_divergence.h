@@ -42,8 +42,16 @@ std::optional<FirstDivergence> first_divergence_of(const Comparison& comparison)
 // The line every report prints for a failed comparison: "first divergence:
 // events[0].impulse at t = 0.4515 s (golden 2.5, new 2.5000000000000004):
 // the first collision's impulse differs by 1 ULP; every later difference
-// follows from it"; the first shape difference when the shapes differ.
+// follows from it", then shape_clause. When no compared value differs, the
+// first shape difference alone ("event counts differ: golden 109, new 108;
+// the first 108 are compared").
 std::string first_divergence_line(const Comparison& comparison);
+
+// What a first divergence adds when the shapes differ too, so that every
+// report names the same value first and the shape after it: "; the
+// trajectories also differ in shape: event counts differ: ... (and 1 more)";
+// empty when the shapes agree.
+std::string shape_clause(const Comparison& comparison);
 
 // What makes two scenes' first divergences "the same cause": the event
 // field with its index ("events[0].impulse"), or for a frame value its

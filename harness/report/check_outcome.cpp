@@ -117,7 +117,8 @@ std::string failure_kind(const SceneCheck& check) {
 std::string outcome_line(const SceneCheck& check) {
     if (check.status == Status::failed && !check.stale && check.comparison) {
         if (const std::optional<FirstDivergence> first = first_divergence_of(*check.comparison)) {
-            return divergence_text(first->divergence) + ": " + first->cause;
+            return divergence_text(first->divergence) + ": " + first->cause +
+                   shape_clause(*check.comparison);
         }
     }
     if (!check.message.empty()) {
