@@ -397,6 +397,12 @@ TEST_CASE("an engine's output is read as strictly as a scene", "[engine-protocol
         CHECK(after.find("(text follows the trajectory: standard output must hold only the "
                          "trajectory; write anything else to standard error)") !=
               std::string::npos);
+        // Cut short is not followed by text: it is said as what it is.
+        const std::string cut =
+            refusal(f.replaying(trajectory.substr(0, trajectory.size() / 2)), f.fall);
+        CHECK(cut.rfind(output + ": not valid JSON: ", 0) == 0);
+        CHECK(cut.find("the output stops inside the trajectory") != std::string::npos);
+        CHECK(cut.find("text follows") == std::string::npos);
     }
     SECTION("a wrong, a missing and an extra column") {
         const auto columns = [&](std::vector<std::string> names) {

@@ -75,9 +75,9 @@ InputError output_error(const std::string& label, const std::string& path,
 }
 
 // A syntax error caused by text around the trajectory (a debug print before
-// or after it) says so and shows how the output begins. Found by a helper
-// writing an engine: "line 1, column 1: invalid literal" did not say that
-// standard output must hold the trajectory alone.
+// or after it), or by a trajectory cut short, says so and shows how the output begins. Found by a
+// helper writing an engine: "line 1, column 1: invalid literal" did not say that standard output
+// must hold the trajectory alone.
 std::string with_stray_text(const std::string& text, const std::string& message) {
     const std::string only = "standard output must hold only the trajectory; write anything "
                              "else to standard error";
@@ -89,8 +89,16 @@ std::string with_stray_text(const std::string& text, const std::string& message)
         return "begins with \"" + last_line(line, shown_chars) +
                "\", not with a trajectory's \"{\" (" + only + ")";
     }
-    if (message.find("expected end of input") != std::string::npos) {
+    // "...; expected end of input": something after the closing brace.
+    if (message.find("; expected end of input") != std::string::npos) {
         return message + " (text follows the trajectory: " + only + ")";
+    }
+    // "unexpected end of input; ...": the text stops inside the trajectory
+    // (an outside review's engine killed mid-write was told text followed it).
+    if (message.find("unexpected end of input") != std::string::npos) {
+        return message + " (the output stops inside the trajectory: the engine exited, or "
+                         "closed standard output, before writing all of it; flush it before "
+                         "exiting)";
     }
     return message;
 }
