@@ -350,6 +350,21 @@ TEST_CASE("an engine that fails is one sentence naming engine, scene and message
         CHECK(why.rfind(failed + "wrote more than 1 MiB", 0) == 0);
         CHECK(why.find("its process group was killed") != std::string::npos);
     }
+    SECTION("frames that alone pass the trajectory limit: refused before the engine starts") {
+        const LimitMib one_mib("1");
+        // One body: 7 numbers a frame, 8 bytes each and 64 for the row, so
+        // 100,001 frames take 12,000,120 bytes, more than 1 MiB.
+        Scene longer = f.fall;
+        longer.dt = 1e-4;
+        longer.duration = 10.0;
+        EngineSpec engine = fake({});
+        engine.command = {"/nonexistent/engine"}; // never started: no "cannot start"
+        CHECK(refusal(engine, longer) ==
+              f.fall.file + ": duration: the engine must write 100001 frames of 7 numbers "
+                            "(100000 steps): 11.4 MiB in memory (700007 numbers), more than the "
+                            "limit of 1 MiB (set IMPULSE_MAX_TRAJECTORY_MIB to a number of MiB "
+                            "to change it)");
+    }
     SECTION("a program that does not exist") {
         EngineSpec engine = fake({});
         engine.command = {"/nonexistent/engine"};

@@ -11,6 +11,7 @@
 #include "number_format.h"
 #include "record.h"
 #include "scene_writer.h"
+#include "trajectory_columns.h"
 #ifdef IMPULSE_WITH_BOX2D
 #include "box2d_simulator.h"
 #include "single_precision.h"
@@ -175,10 +176,31 @@ ProcessResult run_command(const EngineSpec& engine, const Scene& received, const
     return process;
 }
 
+// The protocol fixes an outside engine's frames (steps + 1 rows of 1 + 6 D
+// numbers), so the memory they must take is known before it runs: a scene
+// whose frames alone pass the limit is refused as run_scene refuses it, not
+// after the engine has run, up to its time limit, into the output cap (an
+// outside review). Their text is not known (a number may be one character),
+// so only their memory is checked here; the text as the output is read.
+void require_frames_within_limit(const Scene& scene) {
+    const long long steps = step_count(scene);
+    std::uint64_t columns = 1;
+    for (const SceneBody& body : scene.bodies) {
+        columns += body.is_static ? 0 : body_channel_suffixes.size();
+    }
+    TrajectorySize frames = frames_size_bound(static_cast<std::uint64_t>(steps) + 1, columns);
+    frames.text_bytes = 0;
+    require_within_trajectory_limit(frames, scene.file, "duration",
+                                    "the engine must write " + std::to_string(steps + 1) +
+                                        " frames of " + std::to_string(columns) + " numbers (" +
+                                        std::to_string(steps) + " steps)");
+}
+
 // Tunnelling is not refused here as run_scene does: whether a body passes
 // through another is this engine's property, which the gate is there to see.
 EngineRun run_external(const EngineSpec& engine, const Scene& scene, const Overrides& overrides) {
     const Scene received = with_overrides(scene, overrides);
+    require_frames_within_limit(received);
     const ProcessResult process = run_command(engine, received, scene);
     EngineRun result;
     result.seconds = process.seconds;
