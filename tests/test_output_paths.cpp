@@ -396,3 +396,68 @@ TEST_CASE("A file name that is not UTF-8 is escaped in the message", "[unit][out
     CHECK(valid_utf8(check.out));
     CHECK(check.out.find("bad\\xff\\x01name\xc3\xa9") != std::string::npos);
 }
+
+TEST_CASE("No output replaces a scene, a project file or the verb's own input",
+          "[unit][output-paths]") {
+    // Found by an outside review: run a.json --out a.json, run --json, render
+    // --out and check --junit over the project's scene all replaced it, exit 0.
+    const TempDir dir;
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
+    const fs::path scene = root / "harness" / "scenes" / "drop-box.json";
+    const std::string before = slurp(scene);
+    const std::string s = scene.string();
+    for (const FileOutput& output : file_outputs(root, s)) {
+        INFO(output.name);
+        check_refused(run_tool(output.args), s, "is a scene file (schema impulse/scene@1)");
+        CHECK(slurp(scene) == before);
+    }
+    check_refused(run_tool({"run", s, "--json", s, "--out", (dir.dir / "t.json").string()}), s,
+                  "is a scene file");
+    CHECK_FALSE(fs::exists(dir.dir / "t.json"));
+    CHECK(slurp(scene) == before);
+
+    // A project file, whatever its name.
+    const fs::path project = dir.dir / "project.json";
+    spit(project, R"({"schema": "impulse/project@1", "scenes": ["s"], "goldens": "g"})");
+    check_refused(run_tool({"run", s, "--out", project.string()}), project.string(),
+                  "is a project file");
+
+    // The trajectory render draws, which is neither.
+    const fs::path trajectory = dir.dir / "run.json";
+    REQUIRE(run_tool({"run", s, "--out", trajectory.string()}).exit_code == 0);
+    const std::string drawn = slurp(trajectory);
+    check_refused(
+        run_tool({"render", trajectory.string(), "--scene", s, "--out", trajectory.string()}),
+        trajectory.string(), "which this command reads");
+    CHECK(slurp(trajectory) == drawn);
+    // Replacing an earlier trajectory (not an input) is what --out is for.
+    CHECK(run_tool({"run", s, "--out", trajectory.string()}).exit_code == 0);
+}
+
+TEST_CASE("An empty or over-long output path is refused before the work, the other output kept",
+          "[unit][output-paths]") {
+    // Found by an outside review: --out '' ran the whole scene and then
+    // failed naming "<input>"; --json '' replaced --out's file first.
+    const TempDir dir;
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
+    const std::string scene = (root / "harness" / "scenes" / "drop-box.json").string();
+    const fs::path keep = dir.dir / "keep.json";
+    spit(keep, "an earlier run's bytes");
+    const std::string long_name = (dir.dir / std::string(300, 'x')).string();
+    for (const std::string& option : {std::string("--out"), std::string("--json")}) {
+        const std::string other = option == "--out" ? "--json" : "--out";
+        const Outcome empty = run_tool({"run", scene, other, keep.string(), option, ""});
+        check_refused(empty, option, "is empty; give a file name");
+        const Outcome too_long = run_tool({"run", scene, other, keep.string(), option, long_name});
+        check_refused(too_long, long_name, "has a file name of 300 bytes");
+        CHECK(state_of(keep) == "file an earlier run's bytes");
+    }
+    for (const FileOutput& output : file_outputs(root, "")) {
+        INFO(output.name);
+        check_refused(run_tool(output.args), output.name.substr(output.name.find(' ') + 1),
+                      "is empty");
+    }
+    check_refused(run_tool({"check", "--root", root.string(), "--report", ""}), "--report",
+                  "is empty; give a folder");
+    check_refused(run_tool({"box2d", scene, "--out", ""}), "--out", "is empty; give a folder");
+}

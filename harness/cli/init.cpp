@@ -114,6 +114,9 @@ int init_verb(const std::vector<std::string>& args, std::ostream& out, std::ostr
     if (a.positional.size() > 1) {
         throw UsageError("takes at most one DIR, got " + std::to_string(a.positional.size()));
     }
+    if (!a.positional.empty() && a.positional.front().empty()) {
+        throw UsageError("DIR is empty; give a folder (. is the current one)");
+    }
     const fs::path dir = a.positional.empty() ? fs::path(".") : fs::path(a.positional.front());
     const fs::path project_file = dir / project_file_name;
     const fs::path scene_file = dir / "scenes" / "drop.json";

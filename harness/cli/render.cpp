@@ -194,6 +194,7 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
     const std::vector<std::string> goldens = protected_folders(project);
     if (const auto path = a.option("--out")) {
         check_output_file("--out", *path, goldens);
+        refuse_input_as_output("--out", *path, {input, a.option("--scene").value_or(input)});
     }
     const std::string text = read_trajectory_text(input, "a trajectory to draw");
     const std::string schema = schema_of(text, input);

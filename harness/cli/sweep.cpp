@@ -420,13 +420,13 @@ int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
     if (a.positional.size() != 1) {
         throw UsageError("needs exactly one SCENE, got " + std::to_string(a.positional.size()));
     }
-    const std::string svg = a.option("--svg").value_or("");
-    if (a.has_flag("--json") + a.has_flag("--csv") + is_standard_output(svg) > 1) {
+    const std::optional<std::string> svg = a.option("--svg");
+    if (a.has_flag("--json") + a.has_flag("--csv") + (svg && is_standard_output(*svg)) > 1) {
         throw UsageError("--json, --csv and --svg - all write to standard output: give one");
     }
     const Project project = find_project(a.option("--root"));
-    if (!svg.empty()) {
-        check_output_file("--svg", svg, protected_folders(project));
+    if (svg) {
+        check_output_file("--svg", *svg, protected_folders(project));
     }
     const Scene scene = load_scene(resolve_scene(project, a.positional.front()));
     for (const std::string& warning : scene.warnings) {
@@ -461,15 +461,15 @@ int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
         }
         return run_sweep(scene, config, progress);
     }();
-    if (!svg.empty()) {
-        write_output_file("--svg", svg, sweep_svg(result), protected_folders(project), out);
+    if (svg) {
+        write_output_file("--svg", *svg, sweep_svg(result), protected_folders(project), out);
     }
     if (a.has_flag("--json")) {
         out << to_json(result).dump(2) << "\n";
     } else if (a.has_flag("--csv")) {
         out << sweep_csv(result);
     } else {
-        write_sweep_table(result, is_standard_output(svg) ? err : out);
+        write_sweep_table(result, svg && is_standard_output(*svg) ? err : out);
     }
     return exit_ok;
 }

@@ -4,10 +4,14 @@
 #include "file_kind.h"
 #include "input_error.h"
 
+#include <climits>
 #include <filesystem>
+#include <fstream>
 #include <iterator>
+#include <nlohmann/json.hpp>
 #include <ostream>
 #include <unistd.h>
+#include <utility>
 
 namespace impulse::harness {
 
@@ -106,6 +110,105 @@ void refuse_missing_folder(const std::string& option, const std::string& path) {
     }
 }
 
+// The top-level "schema" of a JSON document, read as a stream that stops
+// as soon as it is known (or the document is not an object): no tree is
+// built, so any file, however large or deep, costs one pass at most.
+class TopLevelSchema : public nlohmann::json_sax<nlohmann::json> {
+  public:
+    std::string schema;
+    bool null() override { return scalar(); }
+    bool boolean(bool) override { return scalar(); }
+    bool number_integer(number_integer_t) override { return scalar(); }
+    bool number_unsigned(number_unsigned_t) override { return scalar(); }
+    bool number_float(number_float_t, const string_t&) override { return scalar(); }
+    bool string(string_t& value) override {
+        if (depth_ == 1 && schema_next_) {
+            schema = value;
+            return false; // found: stop reading
+        }
+        return scalar();
+    }
+    bool binary(binary_t&) override { return scalar(); }
+    bool start_object(std::size_t) override { return open(); }
+    bool end_object() override { return close(); }
+    bool start_array(std::size_t) override { return depth_ > 0 && open(); }
+    bool end_array() override { return close(); }
+    bool key(string_t& name) override {
+        schema_next_ = depth_ == 1 && name == "schema";
+        return true;
+    }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+        return false;
+    }
+
+  private:
+    int depth_ = 0;
+    bool schema_next_ = false;
+    bool scalar() {
+        schema_next_ = false;
+        return depth_ > 0;
+    }
+    bool open() {
+        schema_next_ = false;
+        ++depth_;
+        return true;
+    }
+    bool close() {
+        --depth_;
+        return depth_ > 0;
+    }
+};
+
+// A file at an output path that is one impulse reads and never writes: a
+// scene or a project file, by the schema it declares. A verb's outputs are
+// trajectories, results, reports and pictures, so one written over a scene
+// can only destroy the user's work (an outside review: `run pile --out
+// scenes/pile.json` and `check --junit scenes/pile.json` replaced the scene,
+// exit 0). The families are those of scene.h and project.h, which this
+// lowest module cannot include.
+void refuse_input_file(const std::string& option, const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        return; // unreadable: nothing of the user's to recognise
+    }
+    TopLevelSchema sax;
+    nlohmann::json::sax_parse(in, &sax, nlohmann::json::input_format_t::json, false);
+    const std::pair<const char*, const char*> families[] = {{"impulse/scene@", "a scene"},
+                                                            {"impulse/project@", "a project"}};
+    for (const auto& [family, what] : families) {
+        if (sax.schema.rfind(family, 0) == 0) {
+            throw InputError(path, option,
+                             "is " + std::string(what) + " file (schema " + sax.schema +
+                                 "); impulse never writes over one, so give another path");
+        }
+    }
+}
+
+// A path the system could not create: empty, or a name or whole path longer
+// than the file system takes (checked before the work, not found after it).
+void refuse_impossible_name(const std::string& option, const std::string& path) {
+    if (path.empty()) {
+        throw InputError(option, "", "is empty; give a file name (- is standard output)");
+    }
+    const fs::path p(path);
+    const fs::path folder = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+    const long name_max = ::pathconf(folder.c_str(), _PC_NAME_MAX);
+    const std::size_t longest = name_max > 0 ? static_cast<std::size_t>(name_max) : NAME_MAX;
+    const std::string name = p.filename().string();
+    // The temporary file beside it adds ".tmp-XXXXXX" (11 bytes) to the name.
+    if (name.size() + 11 > longest) {
+        throw InputError(path, option,
+                         "has a file name of " + std::to_string(name.size()) +
+                             " bytes; with the temporary file's \".tmp-XXXXXX\" it passes the " +
+                             std::to_string(longest) + " this file system takes");
+    }
+    if (path.size() + 11 >= PATH_MAX) {
+        throw InputError(path, option,
+                         "is " + std::to_string(path.size()) + " bytes long, more than the " +
+                             std::to_string(PATH_MAX - 12) + " a path may have here");
+    }
+}
+
 } // namespace
 
 bool is_standard_output(const std::string& path) {
@@ -125,6 +228,7 @@ void check_output_file(const std::string& option, const std::string& path,
     if (is_standard_output(path)) {
         return;
     }
+    refuse_impossible_name(option, path);
     const FileKind kind = kind_at(path);
     if (kind != FileKind::missing && kind != FileKind::regular) {
         throw InputError(path, option,
@@ -133,6 +237,24 @@ void check_output_file(const std::string& option, const std::string& path,
     }
     refuse_protected(option, path, landing_place(path), protected_folders);
     refuse_missing_folder(option, path);
+    if (kind == FileKind::regular) {
+        refuse_input_file(option, path);
+    }
+}
+
+void refuse_input_as_output(const std::string& option, const std::string& path,
+                            const std::vector<std::string>& inputs) {
+    if (is_standard_output(path)) {
+        return;
+    }
+    for (const std::string& input : inputs) {
+        std::error_code error;
+        if (fs::equivalent(path, input, error) && !error) {
+            throw InputError(path, option,
+                             "is " + printable_path(input) +
+                                 ", which this command reads; give another path");
+        }
+    }
 }
 
 void check_output_folder(const std::string& option, const std::string& dir,
@@ -140,6 +262,9 @@ void check_output_folder(const std::string& option, const std::string& dir,
     if (is_standard_output(dir)) {
         throw InputError(dir, option,
                          "is standard output, which takes one file; this option needs a folder");
+    }
+    if (dir.empty()) {
+        throw InputError(option, "", "is empty; give a folder (. is the current one)");
     }
     // The files go inside, so a symbolic link to a folder is followed.
     std::error_code error;

@@ -27,6 +27,13 @@ std::vector<std::string> goldens_folders(const std::string& root);
 void check_output_file(const std::string& option, const std::string& path,
                        const std::vector<std::string>& protected_folders);
 
+// Throws InputError naming the path and `option` when it is the same file as
+// one of the verb's `inputs` (render TRAJECTORY --out TRAJECTORY): an output
+// never replaces what the verb reads. Scenes and project files are refused
+// as outputs anyway (check_output_file); this catches the rest.
+void refuse_input_as_output(const std::string& option, const std::string& path,
+                            const std::vector<std::string>& inputs);
+
 // The same for a folder that receives several files (check --report, box2d
 // --out): it must not be, or be inside, a protected or goldens folder, must be a folder
 // if it exists, and cannot be "-".
