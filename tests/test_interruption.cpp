@@ -1,10 +1,12 @@
-// An interrupted harness leaves nothing behind (harness/engines/interruption.h,
+// An interrupted harness leaves nothing behind (harness/format/interruption.h,
 // docs/engine-protocol.md, "Processes"): an engine runs in its own process
 // group, so a Ctrl-C (SIGINT), a CI cancel (SIGTERM) or a closed terminal
 // (SIGHUP) reaches the harness alone; before it ends as signalled, the
 // harness kills the engine's group and removes the private folder of its
 // scene. Found by an outside review: the engine kept running with parent 1
 // and /tmp/impulse-engine-XXXXXX/SCENE.json stayed behind.
+#include "atomic_file.h"
+#include "interruption.h"
 #include "support/files.h"
 #include "support/tool.h"
 
@@ -106,4 +108,70 @@ TEST_CASE("an interrupted run kills its engine's process group and removes the s
             ::kill(engine_pid, SIGKILL); // not left for the next test
         }
     }
+}
+
+namespace {
+
+// The status of a forked child that sets `signal` to its default action (or
+// to a handler of its own that exits 7), registers `file` as a half-written
+// temporary file, and is then sent the signal.
+int child_interrupted_holding(const fs::path& file, int signal, bool own_handler) {
+    const pid_t pid = ::fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+        struct sigaction action {};
+        action.sa_handler = own_handler ? [](int) { ::_exit(7); } : SIG_DFL;
+        sigemptyset(&action.sa_mask);
+        ::sigaction(signal, &action, nullptr);
+        sigset_t none;
+        sigemptyset(&none);
+        ::sigprocmask(SIG_SETMASK, &none, nullptr);
+        const impulse::harness::InterruptibleFile removed_if_interrupted(file.string());
+        ::raise(signal);
+        ::_exit(0); // not reached when the signal ends it
+    }
+    int status = 0;
+    REQUIRE(::waitpid(pid, &status, 0) == pid);
+    return status;
+}
+
+} // namespace
+
+TEST_CASE("an interrupt while a file is written removes the temporary file, and ends as signalled",
+          "[interruption]") {
+    // Found by an outside review: a SIGTERM while run --out or bless wrote
+    // left NAME.tmp-XXXXXX (up to 69 MB) beside the target, in goldens/ too.
+    for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
+        INFO("signal " << signal);
+        const TempDir tmp;
+        const fs::path temp = tmp.dir / "run.json.tmp-abcdef";
+        spit(temp, "half a trajecto");
+        const int status = child_interrupted_holding(temp, signal, false);
+        CHECK(WIFSIGNALED(status));
+        CHECK(WTERMSIG(status) == signal);
+        CHECK_FALSE(fs::exists(temp));
+    }
+}
+
+TEST_CASE("a program with its own interrupt handler keeps it", "[interruption]") {
+    // impulse::protocol links this library: its handler must not replace a user's.
+    const TempDir tmp;
+    const fs::path temp = tmp.dir / "kept.tmp";
+    spit(temp, "theirs");
+    const int status = child_interrupted_holding(temp, SIGTERM, true);
+    CHECK(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 7);
+    CHECK(fs::exists(temp));
+}
+
+TEST_CASE("a finished atomic write leaves no temporary file to remove", "[interruption]") {
+    const TempDir tmp;
+    const fs::path target = tmp.dir / "out.json";
+    impulse::harness::write_file_atomically(target.string(), "whole");
+    CHECK(slurp(target) == "whole");
+    std::size_t entries = 0;
+    for ([[maybe_unused]] const auto& entry : fs::directory_iterator(tmp.dir)) {
+        ++entries;
+    }
+    CHECK(entries == 1);
 }

@@ -2,12 +2,15 @@
 
 #include "file_kind.h"
 #include "input_error.h"
+#include "interruption.h"
 
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
+#include <optional>
+#include <string>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -60,7 +63,15 @@ void write_file_atomically(const std::string& path, const std::string& content) 
     // Same directory as the target, so rename() cannot cross file systems;
     // mkstemp creates it with O_EXCL, so it is never something already there.
     std::string temp = path + ".tmp-XXXXXX";
-    const int fd = mkstemp(temp.data());
+    std::optional<InterruptibleFile> removed_if_interrupted;
+    int fd = -1;
+    {
+        const HeldInterrupts held; // no interrupt between making it and registering it
+        fd = mkstemp(temp.data());
+        if (fd >= 0) {
+            removed_if_interrupted.emplace(temp);
+        }
+    }
     if (fd < 0) {
         throw InputError(path, "", "cannot be written (" + reason() + ")");
     }

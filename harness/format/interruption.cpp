@@ -47,7 +47,9 @@ void on_interrupt(int signal) {
     for (FolderSlot& slot : folders) {
         if (slot.live.load()) {
             ::unlink(slot.file.data());
-            ::rmdir(slot.folder.data());
+            if (slot.folder[0] != '\0') { // a file alone has no folder of its own
+                ::rmdir(slot.folder.data());
+            }
         }
     }
     std::signal(signal, SIG_DFL);
@@ -55,35 +57,61 @@ void on_interrupt(int signal) {
     errno = saved_errno;
 }
 
-void install_once() {
-    static const bool installed = [] {
-        for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
-            struct sigaction action {};
-            action.sa_handler = on_interrupt;
-            sigemptyset(&action.sa_mask);
-            for (const int other : {SIGINT, SIGTERM, SIGHUP}) {
-                sigaddset(&action.sa_mask, other); // one cleanup at a time
-            }
-            // A harness that ignores the signal (nohup) keeps ignoring it.
-            struct sigaction before {};
-            ::sigaction(signal, nullptr, &before);
-            if (before.sa_handler != SIG_IGN) {
-                ::sigaction(signal, &action, nullptr);
-            }
+// Installed over a default action at each registration, not once: the
+// process (or a child forked from it) may have set a signal back to its
+// default since. A harness that ignores the signal (nohup) keeps ignoring
+// it, and a program with its own handler keeps that.
+void install_over_defaults() {
+    for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
+        struct sigaction before {};
+        ::sigaction(signal, nullptr, &before);
+        if (before.sa_handler != SIG_DFL) {
+            continue;
         }
-        return true;
-    }();
-    (void)installed;
+        struct sigaction action {};
+        action.sa_handler = on_interrupt;
+        sigemptyset(&action.sa_mask);
+        for (const int other : {SIGINT, SIGTERM, SIGHUP}) {
+            sigaddset(&action.sa_mask, other); // one cleanup at a time
+        }
+        ::sigaction(signal, &action, nullptr);
+    }
 }
 
 bool fits(const std::string& path) {
     return path.size() < PATH_MAX;
 }
 
+// A slot holding `file` and its `folder` ("" for a file alone), or -1 when
+// none is free or a path is too long (the normal path still removes them).
+int claim_folder_slot(const std::string& folder, const std::string& file) {
+    install_over_defaults();
+    if (!fits(folder) || !fits(file)) {
+        return -1;
+    }
+    const std::lock_guard<std::mutex> lock(claiming);
+    for (int i = 0; i < slot_count; ++i) {
+        FolderSlot& slot = folders[static_cast<std::size_t>(i)];
+        if (!slot.live.load()) {
+            std::memcpy(slot.folder.data(), folder.c_str(), folder.size() + 1);
+            std::memcpy(slot.file.data(), file.c_str(), file.size() + 1);
+            slot.live.store(true); // the paths are complete before the handler may read them
+            return i;
+        }
+    }
+    return -1;
+}
+
+void release_folder_slot(int slot) {
+    if (slot >= 0) {
+        folders[static_cast<std::size_t>(slot)].live.store(false);
+    }
+}
+
 } // namespace
 
 InterruptibleGroup::InterruptibleGroup(pid_t group) : slot_(-1) {
-    install_once();
+    install_over_defaults();
     const std::lock_guard<std::mutex> lock(claiming);
     for (int i = 0; i < slot_count; ++i) {
         if (groups[static_cast<std::size_t>(i)].load() == 0) {
@@ -101,7 +129,7 @@ InterruptibleGroup::~InterruptibleGroup() {
 }
 
 HeldInterrupts::HeldInterrupts() : before_{} {
-    install_once();
+    install_over_defaults();
     sigset_t interrupts;
     sigemptyset(&interrupts);
     for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
@@ -115,28 +143,17 @@ HeldInterrupts::~HeldInterrupts() {
 }
 
 InterruptibleFolder::InterruptibleFolder(const std::string& folder, const std::string& file)
-    : slot_(-1) {
-    install_once();
-    if (!fits(folder) || !fits(file)) {
-        return;
-    }
-    const std::lock_guard<std::mutex> lock(claiming);
-    for (int i = 0; i < slot_count; ++i) {
-        FolderSlot& slot = folders[static_cast<std::size_t>(i)];
-        if (!slot.live.load()) {
-            std::memcpy(slot.folder.data(), folder.c_str(), folder.size() + 1);
-            std::memcpy(slot.file.data(), file.c_str(), file.size() + 1);
-            slot.live.store(true); // the paths are complete before the handler may read them
-            slot_ = i;
-            return;
-        }
-    }
-}
+    : slot_(claim_folder_slot(folder, file)) {}
 
 InterruptibleFolder::~InterruptibleFolder() {
-    if (slot_ >= 0) {
-        folders[static_cast<std::size_t>(slot_)].live.store(false);
-    }
+    release_folder_slot(slot_);
+}
+
+InterruptibleFile::InterruptibleFile(const std::string& file)
+    : slot_(claim_folder_slot("", file)) {}
+
+InterruptibleFile::~InterruptibleFile() {
+    release_folder_slot(slot_);
 }
 
 } // namespace impulse::harness

@@ -1,9 +1,12 @@
 // What an interrupted harness leaves behind: nothing. An engine runs in its
 // own process group (so its misbehaviour cannot signal the harness), which
 // also means a Ctrl-C or a CI cancel (SIGINT, SIGTERM, SIGHUP) reaches the
-// harness alone. While an engine runs, those signals first kill every live
-// engine group and remove every private scene folder, then end the harness
-// as the signal would have (exit status 128 + the signal's number in a shell).
+// harness alone. While an engine runs or a file is being written, those
+// signals first kill every live engine group, remove every private scene
+// folder and every half-written temporary file, then end the harness as the
+// signal would have (exit status 128 + the signal's number in a shell). The
+// handler is installed only over the default action: a program that links
+// this library and handles these signals itself keeps its handler.
 #pragma once
 
 #include <csignal>
@@ -48,6 +51,21 @@ class InterruptibleFolder {
     ~InterruptibleFolder();
     InterruptibleFolder(const InterruptibleFolder&) = delete;
     InterruptibleFolder& operator=(const InterruptibleFolder&) = delete;
+
+  private:
+    int slot_;
+};
+
+// A temporary file being written beside its target (write_file_atomically),
+// removed if the harness is interrupted while it lives: an outside review
+// found `NAME.tmp-XXXXXX` of up to 69 MB left by a SIGTERM during the write,
+// in the goldens folder when bless was writing.
+class InterruptibleFile {
+  public:
+    explicit InterruptibleFile(const std::string& file);
+    ~InterruptibleFile();
+    InterruptibleFile(const InterruptibleFile&) = delete;
+    InterruptibleFile& operator=(const InterruptibleFile&) = delete;
 
   private:
     int slot_;
