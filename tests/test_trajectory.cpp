@@ -301,9 +301,25 @@ TEST_CASE("names are JSON-escaped", "[trajectory]") {
     trajectory.events[0].a = "line\nbreak";
     const std::string text = write_trajectory(trajectory);
     CHECK(text.find("\"quote\\\" backslash\\\\ tab\\t nul\\u0000 end\"") != std::string::npos);
-    const Trajectory back = read_trajectory(text, golden_file);
+    // Read back, a control character is refused: names are printed, and a
+    // newline or an escape in one would forge lines on the terminal.
+    CHECK_THROWS_WITH(read_trajectory(text, golden_file),
+                      Catch::Contains("scene: holds the control character 0x09 at byte 21"));
+    trajectory.scene = "quote\" backslash\\ end";
+    CHECK_THROWS_WITH(read_trajectory(write_trajectory(trajectory), golden_file),
+                      Catch::Contains("events[0].a: holds the control character 0x0A at byte 4"));
+    trajectory.events[0].a = "box";
+    const Trajectory back = read_trajectory(write_trajectory(trajectory), golden_file);
     CHECK(back.scene == trajectory.scene);
-    CHECK(back.events[0].a == "line\nbreak");
+}
+
+TEST_CASE("a stopped run's partial.t is its last frame's time", "[trajectory]") {
+    Trajectory trajectory = sample_trajectory();
+    trajectory.partial = TrajectoryPartial{"a Zeno cascade", trajectory.frames.back().front()};
+    CHECK(read_trajectory(write_trajectory(trajectory), golden_file).partial);
+    trajectory.partial->t = -1.0;
+    CHECK_THROWS_WITH(read_trajectory(write_trajectory(trajectory), golden_file),
+                      Catch::Contains("partial.t: is -1, but the last frame is at t = "));
 }
 
 TEST_CASE("digest_hex is 16 zero-padded lowercase digits", "[trajectory]") {

@@ -6,16 +6,33 @@
 #include "strict_json.h"
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <type_traits>
 
 namespace impulse::harness::trajectory_fields {
+
+void require_printable(const std::string& text, const std::string& path) {
+    // Names and reasons are printed in tables and sentences: a newline or an
+    // escape sequence in one would forge lines or colours on the terminal (an
+    // outside review's golden printed "FAKE LINE" in red through check).
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const auto byte = static_cast<unsigned char>(text[i]);
+        if (byte < 0x20 || byte == 0x7f) {
+            char code[8];
+            std::snprintf(code, sizeof code, "0x%02X", byte);
+            fail(path, std::string("holds the control character ") + code + " at byte " +
+                           std::to_string(i) + "; it is printed, so it must be printable text");
+        }
+    }
+}
 
 std::string read_name(const Json& value, const std::string& path) {
     std::string name = read_string(value, path);
     if (name.empty()) {
         fail(path, "must not be empty");
     }
+    require_printable(name, path);
     return name;
 }
 

@@ -30,6 +30,10 @@ using json_fields::require_array;
 using json_fields::require_key;
 using json_fields::require_object;
 
+// Throws a FieldError at `path` when `text` holds a control character
+// (below 0x20, or 0x7f).
+void require_printable(const std::string& text, const std::string& path);
+
 std::string read_name(const Json& value, const std::string& path);
 // A JSON integer as a double, refused if a double cannot hold it exactly.
 double exact_integer(std::int64_t integer, const std::string& path);

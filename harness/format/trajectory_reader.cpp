@@ -6,6 +6,7 @@
 #include "atomic_file.h"
 #include "input_error.h"
 #include "memory_budget.h"
+#include "number_format.h"
 #include "strict_json.h"
 #include "trajectory.h"
 #include "trajectory_fields.h"
@@ -54,6 +55,7 @@ TrajectoryPartial read_partial(const Json& value) {
     if (partial.reason.empty()) {
         fail("partial.reason", "must say why the run stopped, got an empty string");
     }
+    require_printable(partial.reason, "partial.reason");
     partial.t = read_number(require_key(value, "partial", "t"), "partial.t");
     return partial;
 }
@@ -91,6 +93,13 @@ Trajectory read_validated(StreamedDocument document) {
     trajectory.events = std::move(document.events);
     if (top.contains("partial")) {
         trajectory.partial = read_partial(top["partial"]);
+        // The writer sets it to the last frame's time: where the run stopped.
+        const double last = trajectory.frames.empty() ? 0.0 : trajectory.frames.back().front();
+        if (!(trajectory.partial->t == last)) {
+            fail("partial.t", "is " + format_double(trajectory.partial->t) +
+                                  ", but the last frame is at t = " + format_double(last) +
+                                  " (a stopped run ends at its last frame)");
+        }
     }
 
     const std::uint64_t computed = digest_of(trajectory);
