@@ -9,9 +9,11 @@
 #include "run.h"
 #include "scene.h"
 #include "support/files.h"
+#include "tracks.h"
 #include "trajectory.h"
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -484,4 +486,22 @@ TEST_CASE("impulse render draws a scene and a trajectory", "[render]") {
         CHECK(render_verb({"--help"}, help, err) == 0);
         CHECK(help.str().find("--root") != std::string::npos);
     }
+}
+
+TEST_CASE("a picture frames any motion it can draw: a span too small or too large for doubles",
+          "[render]") {
+    using picture::Box;
+    // Found by an outside review: a body moving 1e-320 m drew a 0 x 0 picture.
+    const Box tiny = picture::framed(Box{0.0, 0.0, 1e-320, 0.0}, nullptr);
+    CHECK(tiny.width() >= 1.0);
+    CHECK(tiny.height() >= 1.0);
+    // Positions at +-1e308: a width of inf scaled every point to NaN.
+    const Box huge = picture::framed(Box{-1e308, -1e308, 1e308, 1e308}, nullptr);
+    CHECK(std::isfinite(huge.width()));
+    CHECK(std::isfinite(huge.height()));
+    CHECK(huge.width() > 0.0);
+    // Ordinary motion keeps its 8% margin.
+    const Box drop = picture::framed(Box{0.0, 0.0, 1.0, 2.0}, nullptr);
+    CHECK(drop.x0 == Approx(-0.16));
+    CHECK(drop.y1 == Approx(2.16));
 }

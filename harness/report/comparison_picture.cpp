@@ -34,10 +34,8 @@ struct Runs {
     std::vector<Track> present;    // the new run's tracks that it has
 
     Runs(const Scene* scene_, const Trajectory& gold_, const Trajectory& value_)
-        : scene(scene_), gold(gold_), value(value_), tracks(tracks_of(gold_, scene_)) {
-        for (const Track& track : tracks) {
-            new_tracks.push_back(track_in(value, track));
-        }
+        : scene(scene_), gold(gold_), value(value_), tracks(tracks_of(gold_, scene_)),
+          new_tracks(tracks_in(value_, tracks)) {
         for (const Track& t : new_tracks) {
             if (has_position(t)) {
                 present.push_back(t);

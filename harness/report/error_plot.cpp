@@ -168,9 +168,10 @@ ErrorSeries error_series(const Trajectory& gold, const Trajectory& value) {
     ErrorSeries series;
     std::vector<std::pair<std::size_t, std::size_t>> pairs; // gold column, new column
     std::vector<int> channel;
+    const ColumnLookup value_column(value);
     for (std::size_t i = 1; i < gold.columns.size(); ++i) {
         const int c = frame_channel(gold.columns[i]);
-        const std::size_t j = column_index(value, gold.columns[i]);
+        const std::size_t j = value_column(gold.columns[i]);
         if (c >= 0 && j != npos) {
             pairs.emplace_back(i, j);
             channel.push_back(c);

@@ -63,10 +63,7 @@ std::string statics_json(const Scene* scene) {
 // collisions (t, point, normal).
 std::string run_json(const char* label, const Trajectory& run, const std::vector<Track>& tracks,
                      const std::vector<std::size_t>& frames) {
-    std::vector<Track> own;
-    for (const Track& track : tracks) {
-        own.push_back(picture::track_in(run, track));
-    }
+    const std::vector<Track> own = picture::tracks_in(run, tracks);
     std::vector<double> t;
     std::string poses = "[";
     for (std::size_t i = 0; i < frames.size(); ++i) {
@@ -121,10 +118,7 @@ std::string replay_json(const SceneCheck& check, std::size_t budget) {
 
     const std::vector<Track> tracks = picture::tracks_of(gold, scene);
     picture::Box motion = picture::motion_bounds(gold, tracks);
-    std::vector<Track> value_tracks;
-    for (const Track& track : tracks) {
-        value_tracks.push_back(picture::track_in(value, track));
-    }
+    const std::vector<Track> value_tracks = picture::tracks_in(value, tracks);
     motion.add(picture::motion_bounds(value, value_tracks));
     const picture::Box view = picture::framed(motion, scene);
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 #include <utility>
 
 namespace impulse::harness::picture {
@@ -36,29 +37,48 @@ std::size_t column_index(const Trajectory& trajectory, const std::string& name) 
     return npos;
 }
 
+ColumnLookup::ColumnLookup(const Trajectory& trajectory) {
+    index_.reserve(trajectory.columns.size());
+    for (std::size_t i = 1; i < trajectory.columns.size(); ++i) {
+        index_.emplace(trajectory.columns[i], i); // the first of a repeated name, as the scan
+    }
+}
+
+std::size_t ColumnLookup::operator()(const std::string& name) const {
+    const auto it = index_.find(name);
+    return it == index_.end() ? npos : it->second;
+}
+
 std::vector<Track> tracks_of(const Trajectory& trajectory, const Scene* scene) {
+    const ColumnLookup column(trajectory);
+    std::unordered_map<std::string, const SceneBody*> dynamic_bodies;
+    if (scene != nullptr) {
+        for (const SceneBody& body : scene->bodies) {
+            if (!body.is_static) {
+                dynamic_bodies[body.name] = &body; // the last of a name, as the scan did
+            }
+        }
+    }
     std::vector<Track> tracks;
     for (std::size_t i = 1; i < trajectory.columns.size(); ++i) {
-        const std::string& column = trajectory.columns[i];
+        const std::string& column_name = trajectory.columns[i];
         const std::string x_suffix = body_channel_suffixes[0];
-        if (column.size() <= x_suffix.size() ||
-            column.compare(column.size() - x_suffix.size(), x_suffix.size(), x_suffix) != 0) {
+        if (column_name.size() <= x_suffix.size() ||
+            column_name.compare(column_name.size() - x_suffix.size(), x_suffix.size(), x_suffix) !=
+                0) {
             continue;
         }
         Track track;
-        track.name = column.substr(0, column.size() - x_suffix.size());
+        track.name = column_name.substr(0, column_name.size() - x_suffix.size());
         track.x = i;
-        track.y = column_index(trajectory, track.name + body_channel_suffixes[1]);
+        track.y = column(track.name + body_channel_suffixes[1]);
         if (track.y == npos) {
             continue;
         }
-        track.angle = column_index(trajectory, track.name + body_channel_suffixes[2]);
-        if (scene != nullptr) {
-            for (const SceneBody& body : scene->bodies) {
-                if (body.name == track.name && !body.is_static) {
-                    track.body = &body;
-                }
-            }
+        track.angle = column(track.name + body_channel_suffixes[2]);
+        const auto body = dynamic_bodies.find(track.name);
+        if (body != dynamic_bodies.end()) {
+            track.body = body->second;
         }
         track.colour = palette[tracks.size() % palette.size()];
         tracks.push_back(std::move(track));
@@ -66,12 +86,18 @@ std::vector<Track> tracks_of(const Trajectory& trajectory, const Scene* scene) {
     return tracks;
 }
 
-Track track_in(const Trajectory& trajectory, const Track& track) {
-    Track t = track;
-    t.x = column_index(trajectory, track.name + body_channel_suffixes[0]);
-    t.y = column_index(trajectory, track.name + body_channel_suffixes[1]);
-    t.angle = column_index(trajectory, track.name + body_channel_suffixes[2]);
-    return t;
+std::vector<Track> tracks_in(const Trajectory& trajectory, const std::vector<Track>& tracks) {
+    const ColumnLookup column(trajectory);
+    std::vector<Track> found;
+    found.reserve(tracks.size());
+    for (const Track& track : tracks) {
+        Track t = track;
+        t.x = column(track.name + body_channel_suffixes[0]);
+        t.y = column(track.name + body_channel_suffixes[1]);
+        t.angle = column(track.name + body_channel_suffixes[2]);
+        found.push_back(std::move(t));
+    }
+    return found;
 }
 
 bool has_position(const Track& track) {
@@ -111,12 +137,25 @@ Box motion_bounds(const Trajectory& trajectory, const std::vector<Track>& tracks
     return b;
 }
 
+// The largest coordinate a picture frames: beyond it a width overflows to
+// infinity; a body further out is drawn past the edge.
+constexpr double farthest_framed = 1e300;
+// The smallest span a picture frames, relative to where it is: below it the
+// scale to pixels overflows (an outside review's body moving 1e-320 m drew a
+// 0 x 0 picture), and nothing smaller than rounding is there to see.
+constexpr double least_relative_span = 1e-9;
+
 Box framed(Box motion, const Scene* scene) {
     if (motion.empty()) {
         motion = {-1.0, -1.0, 1.0, 1.0};
     }
+    motion =
+        motion.intersection({-farthest_framed, -farthest_framed, farthest_framed, farthest_framed});
+    const double extent = std::max(
+        {std::abs(motion.x0), std::abs(motion.x1), std::abs(motion.y0), std::abs(motion.y1), 1.0});
     const double span = std::max(motion.width(), motion.height());
-    const double margin = span > 0.0 ? 0.08 * span : 0.5;
+    const double margin =
+        span > least_relative_span * extent ? 0.08 * span : std::max(0.5, 1e-3 * extent);
     Box b = motion.grown(margin);
     if (scene != nullptr) {
         const Box near = motion.grown(std::max(2.0 * margin, 0.12 * span));
