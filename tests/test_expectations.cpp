@@ -395,6 +395,15 @@ TEST_CASE("energy-non-increasing on a hand-built bounce", "[expectations]") {
         CHECK(results[0].expected == 6.0);
         CHECK(std::abs(results[0].actual - 6.0 - 1.6e-9) <= 1e-14);
     }
+    SECTION("an allowance past the largest double allows any rise, as asked") {
+        // atol + rtol x 12 J overflows; a rise of 8 J is within "any".
+        Trajectory t = drop_trajectory();
+        t.frames[3][2] += 1.0;
+        const std::vector<ExpectationResult> results = evaluate(
+            drop_scene, R"([{"kind": "energy-non-increasing", "atol": 1e308, "rtol": 1e308}])", t);
+        INFO(listing(results));
+        CHECK(failures(results) == 0);
+    }
 }
 
 TEST_CASE("event: literal values of one collision", "[expectations]") {
