@@ -2,6 +2,7 @@
 #include "cli.h"
 #include "gate.h"
 #include "support/files.h"
+#include "support/roots.h"
 #include "support/tool.h"
 #include "support/tool_in_folder.h"
 #include "trajectory.h"
@@ -294,4 +295,24 @@ TEST_CASE("goldens left in goldens/ when a second engine is added are named as t
           std::string::npos);
     CHECK(checked.err.find("no scene of that name") == std::string::npos);
     CHECK(fs::exists(dir / "goldens" / "stack.json")); // check deletes nothing
+}
+
+TEST_CASE("bless and check warn of a recentred polygon as run does", "[gate]") {
+    // Found by an outside review: run, render and compare printed it; check
+    // and bless said nothing.
+    const TempDir tmp;
+    const std::filesystem::path root = make_root(tmp, {}, Goldens::none);
+    spit(root / "harness" / "scenes" / "off.json",
+         R"({"schema": "impulse/scene@1", "name": "off", "dt": 0.01, "duration": 0.05,
+  "bodies": [{"name": "tri", "shape": {"polygon": [[0, 0], [1, 0], [0, 1]]}}]})");
+    const std::string words = "bodies[0].shape.polygon: centroid is at";
+    const Outcome blessed = run_tool({"bless", "--root", root.string()});
+    INFO(blessed.err);
+    REQUIRE(blessed.exit_code == 0);
+    CHECK(blessed.err.find("warning: ") != std::string::npos);
+    CHECK(blessed.err.find(words) != std::string::npos);
+    const Outcome checked = run_tool({"check", "--root", root.string()});
+    INFO(checked.err);
+    CHECK(checked.exit_code == 0);
+    CHECK(checked.err.find(words) != std::string::npos);
 }

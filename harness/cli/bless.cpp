@@ -158,6 +158,11 @@ Preparation prepare_all(const Project& project, const std::vector<EngineSpec>& e
             progress.set_item(stem);
             try {
                 Blessing b = prepare_blessing(project, engine, path);
+                progress.without_bar([&] {
+                    for (const std::string& warning : b.warnings) {
+                        err << "warning: " << warning << "\n" << std::flush;
+                    }
+                });
                 const std::string name = several ? engine.name + "/" + b.name : b.name;
                 if (b.outcome == Blessing::Outcome::refused) {
                     p.refusing.push_back(name);

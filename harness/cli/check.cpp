@@ -142,9 +142,13 @@ void add_unreferenced_goldens(const Project& project, bool ci, std::vector<Scene
     }
 }
 
-// Notes that never change a scene's status (a golden from another version).
+// Notes that never change a scene's status: the scene's own (a polygon
+// recentred) and the golden's (recorded by another version).
 void print_warnings(const std::vector<SceneCheck>& checks, std::ostream& err) {
     for (const SceneCheck& c : checks) {
+        for (const std::string& warning : c.scene_warnings) {
+            err << "warning: " << warning << "\n";
+        }
         for (const std::string& warning : c.warnings) {
             err << "warning: " << printable_path(c.golden_file) << ": " << warning << "\n";
         }

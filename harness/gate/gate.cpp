@@ -186,6 +186,7 @@ SceneCheck check_scene(const Project& project, const EngineSpec& engine,
     try {
         check.scene = load_scene_for_golden(project, scene_path);
         const Scene& scene = *check.scene;
+        check.scene_warnings = scene.warnings;
         check.name = scene.name;
         check.golden_file = golden_path(project, engine, scene.name);
 
@@ -300,6 +301,7 @@ Blessing prepare_blessing(const Project& project, const EngineSpec& engine,
     blessing.name = scene_stem(scene_path);
     const Scene scene = load_scene_for_golden(project, scene_path);
     blessing.name = scene.name;
+    blessing.warnings = scene.warnings;
     blessing.golden_file = golden_path(project, engine, scene.name);
     blessing.golden_folder = golden_folder(project, engine);
     const std::optional<Trajectory> ran = run_in(engine, scene, blessing.summary);

@@ -102,6 +102,7 @@ struct Blessing {
     Outcome outcome = Outcome::unchanged;
     std::string summary; // changed: what moved and by how much; refused: why
     std::string golden_folder;
+    std::vector<std::string> warnings; // the scene's, each naming its file (a polygon recentred)
     // created / changed, between prepare_blessing and write_blessing: the
     // golden's new bytes.
     std::string text;

@@ -29,6 +29,9 @@ struct SceneCheck {
     std::string message;               // one sentence for failed / error
     std::string details;               // multi-line text: divergences, failed expectations
     std::vector<std::string> warnings; // printed to stderr; never change the status
+    // The scene's own, each naming its file (a polygon recentred): printed
+    // to stderr as run prints them; never change the status.
+    std::vector<std::string> scene_warnings;
     std::optional<Comparison> comparison;
     std::vector<ExpectationResult> expectations;
     std::optional<Scene> scene;

@@ -103,7 +103,11 @@ Json scene_json(const SceneCheck& check, const CheckRun& run) {
     j["structural"] = compared ? Json(check.comparison->structural) : Json::array();
     j["channels"] = compared ? channels_json(*check.comparison) : Json(nullptr);
     j["failed_expectations"] = failed_expectations_json(check);
-    j["warnings"] = check.warnings;
+    Json warnings = check.scene_warnings;
+    for (const std::string& warning : check.warnings) {
+        warnings.push_back(warning);
+    }
+    j["warnings"] = warnings;
     return j;
 }
 
