@@ -236,9 +236,17 @@ BlessCounts write_prepared(Preparation& p, bool partial, std::ostream& out, std:
         }
     }
     if (hold) {
-        out << "no golden was written: " << why_held(p) << ", and " << held << " other golden"
-            << (held == 1 ? " stays as it was" : "s stay as they were")
-            << "; fix them, or write the others with --partial\n";
+        // Held back: goldens that would be new or changed (an unchanged one
+        // is not "held", and a new one did not "stay" anywhere).
+        out << "no golden was written: " << why_held(p);
+        if (held > 0) {
+            out << ", and " << held << " other new or changed golden"
+                << (held == 1 ? " was" : "s were") << " held back; fix "
+                << (p.refusing.size() == 1 ? "it" : "them") << ", or write the others with "
+                << "--partial\n";
+        } else {
+            out << "; fix " << (p.refusing.size() == 1 ? "it" : "them") << "\n";
+        }
     } else if (!p.refusing.empty()) {
         int written = counts.created + counts.changed;
         out << "--partial: " << written << " golden" << (written == 1 ? " was" : "s were")

@@ -130,7 +130,7 @@ void add_unreferenced_goldens(const Project& project, bool ci, std::vector<Scene
             const std::string reason = unreferenced_reason(project, golden);
             orphan.message = printable_path(golden) + ": unreferenced golden: " +
                              (reason == "no scene of that name"
-                                  ? "no canonical scene is named '" + orphan.name + "'"
+                                  ? "no scene of the project is named '" + orphan.name + "'"
                                   : reason) +
                              "; delete it with " + project.regen + " --prune";
             checks.push_back(orphan);
@@ -386,8 +386,9 @@ void write_outputs(const CheckRequest& r, const std::vector<SceneCheck>& checks,
     if (r.report) {
         write_report(*r.report, checks);
         if (!r.quiet) {
-            table << "report: " << printable_path(*r.report) << "/summary.md, "
-                  << printable_path(*r.report) << "/index.html\n";
+            const std::filesystem::path folder(*r.report);
+            table << "report: " << printable_path((folder / "summary.md").string()) << ", "
+                  << printable_path((folder / "index.html").string()) << "\n";
         }
     }
 }
