@@ -9,11 +9,7 @@
 namespace impulse {
 
 double rotation_radius(const Shape& shape) {
-    double r = 0.0;
-    for (int i = 0; i < shape.polygon.count; ++i) {
-        r = std::max(r, length(shape.polygon.vertices[static_cast<std::size_t>(i)]));
-    }
-    return shape.type == ShapeType::circle ? 0.0 : r;
+    return shape.type == ShapeType::circle ? 0.0 : circumradius(shape);
 }
 
 namespace {

@@ -1,15 +1,13 @@
 #include "islands.h"
 
+#include "index.h"
+
 #include <algorithm>
 #include <cstddef>
 
 namespace impulse {
 
 namespace {
-
-std::size_t at(int i) {
-    return static_cast<std::size_t>(i);
-}
 
 // Path halving: every other node on the way up points to its grandparent, so
 // later finds are short without a second pass or recursion.

@@ -1,5 +1,6 @@
 #include "mprgp.h"
 
+#include "index.h"
 #include "mprgp_scaling.h"
 
 #include <algorithm>
@@ -22,10 +23,6 @@ constexpr double infinite = std::numeric_limits<double>::infinity();
 // pile-boxes-100, 0.5 and 1 differ by less than the run-to-run change of the
 // trajectory itself; 2 and 4 take 15-60% more.
 constexpr double proportion = 1.0;
-
-std::size_t at(int i) {
-    return static_cast<std::size_t>(i);
-}
 
 // The iteration from here on runs on the scaled problem (mprgp.h): its
 // "lambda" is mu, its A is A^, its gradient A^ mu + q^ = D^-1/2 w.

@@ -5,6 +5,7 @@
 #include "contact_problem.h"
 #include "contact_rows.h"
 #include "impulse_unit.h"
+#include "index.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,10 +14,6 @@
 namespace impulse {
 
 namespace {
-
-std::size_t at(int i) {
-    return static_cast<std::size_t>(i);
-}
 
 // The M^-1 norm of a point's row of J on one body, scaled as its row is:
 // scale sqrt(n.n / m + rn^2 / I).

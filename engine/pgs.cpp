@@ -1,15 +1,13 @@
 #include "pgs.h"
 
+#include "index.h"
+
 #include <algorithm>
 #include <cstddef>
 
 namespace impulse {
 
 namespace {
-
-std::size_t at(int i) {
-    return static_cast<std::size_t>(i);
-}
 
 // w_i = J_i dv + q_i.
 double velocity_of(const PgsRow& r, double q, const PgsScratch& s) {

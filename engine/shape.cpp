@@ -1,14 +1,11 @@
 #include "shape.h"
 
+#include "trig.h"
+
 #include <algorithm>
 #include <limits>
 
 namespace impulse {
-
-namespace {
-// pi to double precision; a constant, not a library call.
-constexpr double pi = 3.141592653589793;
-} // namespace
 
 Shape make_circle(double radius) {
     Shape shape;
@@ -71,6 +68,17 @@ MassProperties mass_properties(const Shape& shape) {
     // Parallel-axis theorem moves the moment from the fan's origin to the centroid.
     mp.inertia_per_unit_mass = second_moment / area - length_squared(centroid_from_origin);
     return mp;
+}
+
+double circumradius(const Shape& shape) {
+    if (shape.type == ShapeType::circle) {
+        return shape.radius;
+    }
+    double r = 0.0;
+    for (int i = 0; i < shape.polygon.count; ++i) {
+        r = std::max(r, length(shape.polygon.vertices[static_cast<std::size_t>(i)]));
+    }
+    return r;
 }
 
 double inradius(const Shape& shape) {

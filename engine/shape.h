@@ -47,6 +47,11 @@ MassProperties mass_properties(const Shape& shape);
 // sum of their inradii, doubled, relative to each other.
 double inradius(const Shape& shape);
 
+// R, the farthest a point of the shape lies from its centre: the radius of a
+// circle, a polygon's farthest vertex. Two shapes whose centres are more than
+// the sum of their circumradii apart cannot overlap, at any angles.
+double circumradius(const Shape& shape);
+
 // Twice the signed area of the triangle (a, b, c): positive when counter-clockwise.
 constexpr double twice_signed_area(Vec2 a, Vec2 b, Vec2 c) {
     return cross(b - a, c - a);

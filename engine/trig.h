@@ -16,6 +16,10 @@
 
 namespace impulse {
 
+// The double nearest pi, written out: no library trigonometry (Determinism
+// rule 3), and M_PI is not standard C++.
+inline constexpr double pi = 3.141592653589793;
+
 double sine(double x);
 double cosine(double x);
 

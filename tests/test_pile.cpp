@@ -7,6 +7,7 @@
 #include "scene.h"
 #include "scene_pile_block.h"
 #include "scene_reading.h"
+#include "shape.h"
 #include "support/files.h"
 #include "support/outcome.h"
 
@@ -122,7 +123,7 @@ TEST_CASE("a pile at the tightest spacing has no overlap and its walls enclose i
     CHECK(floor.position.x - floor.shape.polygon.vertices[2].x <= left.position.x);
     CHECK(floor.position.x + floor.shape.polygon.vertices[2].x >= right.position.x);
     for (std::size_t i = 3; i < bodies.size(); ++i) {
-        const double r = impulse::harness::bounding_diameter(bodies[i].shape) / 2.0;
+        const double r = impulse::circumradius(bodies[i].shape);
         INFO(bodies[i].name);
         CHECK(bodies[i].position.x - r > left_face);
         CHECK(bodies[i].position.x + r < right_face);

@@ -6,6 +6,7 @@
 #include "input_error.h"
 #include "scene.h"
 #include "sha256.h"
+#include "shape.h"
 #include "support/scene_text.h"
 
 #include <catch2/catch.hpp>
@@ -75,8 +76,8 @@ TEST_CASE("splitmix64 gives the reference outputs, and unit() its 53 high bits",
     CHECK(again.unit() < 1.0);
 }
 
-TEST_CASE("the lattice side and the bounding diameter", "[scene]") {
-    using impulse::harness::bounding_diameter;
+TEST_CASE("the lattice side and the circumradius", "[scene]") {
+    using impulse::circumradius;
     using impulse::harness::gas_lattice_side;
     CHECK(gas_lattice_side(1) == 1);
     CHECK(gas_lattice_side(4) == 2);
@@ -86,9 +87,9 @@ TEST_CASE("the lattice side and the bounding diameter", "[scene]") {
     CHECK(gas_lattice_side(10000) == 100);
     CHECK(gas_lattice_side(10001) == 101);
     CHECK(gas_lattice_side(100000) == 317); // 316^2 = 99856 < 100000 <= 317^2 = 100489
-    CHECK(bounding_diameter(impulse::make_circle(0.1)) == 0.2);
+    CHECK(circumradius(impulse::make_circle(0.1)) == 0.1);
     // Box [0.3, 0.4]: corners 0.5 from the centre.
-    CHECK(bounding_diameter(impulse::make_box(0.3, 0.4)) == Approx(1.0).epsilon(1e-15));
+    CHECK(circumradius(impulse::make_box(0.3, 0.4)) == Approx(0.5).epsilon(1e-15));
 }
 
 TEST_CASE("a gas block makes four walls and its bodies on the lattice", "[scene]") {

@@ -80,15 +80,6 @@ Exit: 0 every observable within its tolerance, 1 one is not, 2 bad input (a
 broken scene, a bad option, a shape Box2D cannot take, a build without Box2D).
 )";
 
-int parse_count(const std::string& option, const std::string& text) {
-    int value = 0;
-    std::istringstream in(text);
-    if (!(in >> value) || !in.eof() || value < 1 || value > 1000) {
-        throw UsageError(option + " must be a whole number from 1 to 1000, got '" + text + "'");
-    }
-    return value;
-}
-
 #ifdef IMPULSE_WITH_BOX2D
 // About six significant digits: a table is read, not parsed.
 std::string short_number(std::optional<double> value) {
@@ -366,13 +357,13 @@ int box2d_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
         options.dt = positive_seconds("--dt", *dt);
     }
     if (const auto n = a.option("--substeps")) {
-        options.substeps = parse_count("--substeps", *n);
+        options.substeps = parse_count("--substeps", *n, 1, 1000);
     }
     if (const auto n = a.option("--velocity-iterations")) {
-        options.velocity_iterations = parse_count("--velocity-iterations", *n);
+        options.velocity_iterations = parse_count("--velocity-iterations", *n, 1, 1000);
     }
     if (const auto n = a.option("--position-iterations")) {
-        options.position_iterations = parse_count("--position-iterations", *n);
+        options.position_iterations = parse_count("--position-iterations", *n, 1, 1000);
     }
     options.scene_integrator = a.has_flag("--scene-integrator");
 #ifndef IMPULSE_WITH_BOX2D

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 namespace impulse::harness::cli {
@@ -113,12 +114,15 @@ std::vector<std::string> normalise_jobs(const std::vector<std::string>& args) {
     return out;
 }
 
-int parse_count(const std::string& option, const std::string& text, int low) {
+int parse_count(const std::string& option, const std::string& text, int low, int high) {
     int value = 0;
     std::istringstream in(text);
-    if (!(in >> value) || !in.eof() || value < low) {
-        throw UsageError(option + " must be a whole number >= " + std::to_string(low) + ", got '" +
-                         text + "'");
+    if (!(in >> value) || !in.eof() || value < low || value > high) {
+        const std::string range =
+            high == std::numeric_limits<int>::max()
+                ? ">= " + std::to_string(low)
+                : "from " + std::to_string(low) + " to " + std::to_string(high);
+        throw UsageError(option + " must be a whole number " + range + ", got '" + text + "'");
     }
     return value;
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <iosfwd>
+#include <limits>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -40,8 +41,10 @@ Arguments parse_arguments(const std::vector<std::string>& args,
 // "-j 4" and "-j4" spelled "--jobs 4" for parse_arguments (check, conform).
 std::vector<std::string> normalise_jobs(const std::vector<std::string>& args);
 
-// A whole number >= low given to `option` (--jobs, --shard), or UsageError.
-int parse_count(const std::string& option, const std::string& text, int low);
+// A whole number from low to high given to `option` (--jobs, --shard,
+// --substeps), or UsageError.
+int parse_count(const std::string& option, const std::string& text, int low,
+                int high = std::numeric_limits<int>::max());
 
 // A strictly parsed positive finite number of seconds, or UsageError naming the option.
 double positive_seconds(const std::string& option, const std::string& text);

@@ -47,7 +47,7 @@ Json first_json(const Comparison& comparison) {
     return j;
 }
 
-Json channels_json(const Comparison& comparison) {
+Json compared_channels_json(const Comparison& comparison) {
     Json channels = Json::object();
     for (std::size_t c = 0; c < channel_count; ++c) {
         const ChannelSummary& s = comparison.channels[c];
@@ -88,7 +88,7 @@ std::string diff_json(const DiffInput& input, const Comparison& comparison) {
         columns.push_back(divergence_json(d));
     }
     document["columns"] = std::move(columns);
-    document["channels"] = channels_json(comparison);
+    document["channels"] = compared_channels_json(comparison);
     // Invalid UTF-8 in a column name is replaced, never a crash.
     return document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }

@@ -5,6 +5,7 @@
 #include "gas.h"
 
 #include "generated_bodies.h"
+#include "trig.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -14,10 +15,6 @@
 namespace impulse::harness {
 
 namespace {
-
-// The double nearest pi, written out: no library trigonometry (docs/design.md,
-// determinism rule 3), and M_PI is not standard C++.
-constexpr double pi = 3.141592653589793;
 
 // u in [0, 1) to 2 u - 1 in [-1, 1). Exact: 2 u is a multiple of 2^-52 below
 // 2, and subtracting 1 from it needs no rounding.
@@ -45,17 +42,6 @@ int gas_lattice_side(int count) {
         ++k;
     }
     return k;
-}
-
-double bounding_diameter(const Shape& shape) {
-    if (shape.type == ShapeType::circle) {
-        return 2.0 * shape.radius;
-    }
-    double largest = 0.0;
-    for (int i = 0; i < shape.polygon.count; ++i) {
-        largest = std::max(largest, length(shape.polygon.vertices[static_cast<std::size_t>(i)]));
-    }
-    return 2.0 * largest;
 }
 
 std::vector<SceneBody> generate_gas(const GasSpec& gas) {

@@ -34,14 +34,9 @@ class SplitMix64 {
 // integers (std::sqrt of a large count may round either way).
 int gas_lattice_side(int count);
 
-// Twice the largest distance of the shape's boundary from its centroid (the
-// origin): no two shapes whose centres are further apart than this can
-// overlap, whatever their angles.
-double bounding_diameter(const Shape& shape);
-
 // The bodies the block stands for: wall-bottom, wall-top, wall-left,
 // wall-right, then gas-0 ... gas-(count - 1). The caller has validated the
-// spec (count >= 1, spacing > bounding_diameter, finite sizes).
+// spec (count >= 1, spacing > 2 circumradius, finite sizes).
 std::vector<SceneBody> generate_gas(const GasSpec& gas);
 
 } // namespace impulse::harness

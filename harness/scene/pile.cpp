@@ -6,6 +6,7 @@
 
 #include "gas.h"
 #include "generated_bodies.h"
+#include "trig.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,9 +16,6 @@
 namespace impulse::harness {
 
 namespace {
-
-// The double nearest pi, written out (gas.cpp says why).
-constexpr double pi = 3.141592653589793;
 
 // sqrt(2) rounded to the nearest double, written out so that the bound does
 // not depend on a library.

@@ -3,6 +3,7 @@
 #include "gas.h"
 #include "generated_bodies.h"
 #include "scene_reading.h"
+#include "shape.h"
 
 #include <algorithm>
 #include <cmath>
@@ -83,7 +84,7 @@ void read_gas(const Node& node, Scene& scene) {
     gas.spacing = read_positive(spacing);
     // Closer sites could let two bodies overlap at some angles; the room is
     // checked for overlaps below, but this says what to change.
-    const double diameter = bounding_diameter(gas.shape);
+    const double diameter = 2.0 * circumradius(gas.shape);
     if (!(gas.spacing > diameter)) {
         spacing.fail("must be more than the shape's bounding diameter " + number_text(diameter) +
                      " m (twice its furthest point from the centroid), so that no two bodies "

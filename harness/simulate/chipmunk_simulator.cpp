@@ -11,6 +11,7 @@
 
 #include "input_error.h"
 #include "number_format.h"
+#include "shape.h"
 #include "text.h"
 
 #include <algorithm>
@@ -108,17 +109,6 @@ struct RangeJudge {
     }
 };
 
-double reach_of(const Shape& shape) {
-    if (shape.type == ShapeType::circle) {
-        return shape.radius;
-    }
-    double reach = 0.0;
-    for (int i = 0; i < shape.polygon.count; ++i) {
-        reach = std::max(reach, length(shape.polygon.vertices[static_cast<std::size_t>(i)]));
-    }
-    return reach;
-}
-
 std::string body_path(const Scene& scene, std::size_t i) {
     if (i < scene.listed_bodies) {
         return "bodies[" + std::to_string(i) + "]";
@@ -131,7 +121,7 @@ void judge_body(const RangeJudge& judge, const Scene& scene, const SceneBody& bo
     judge(path + ".position", "its x", body.position.x, " m", true);
     judge(path + ".position", "its y", body.position.y, " m", true);
     judge(path + ".angle", "its angle", body.angle, " rad", true);
-    judge(path + ".shape", "its size", reach_of(body.shape), " m", false);
+    judge(path + ".shape", "its size", circumradius(body.shape), " m", false);
     if (body.is_static) {
         return;
     }
@@ -149,7 +139,8 @@ void judge_body(const RangeJudge& judge, const Scene& scene, const SceneBody& bo
         judge(path + ".inertia", "its inverse rotational inertia", 1.0 / body.inertia,
               " 1/(kg m^2)", false);
     }
-    const double farthest = length(body.position) + reach_of(body.shape) + speed * scene.duration;
+    const double farthest =
+        length(body.position) + circumradius(body.shape) + speed * scene.duration;
     judge(path + ".position", "the farthest it can get from the origin", farthest, " m", true);
 }
 

@@ -1,6 +1,7 @@
 #include "single_precision.h"
 
 #include "input_error.h"
+#include "shape.h"
 
 #include <algorithm>
 #include <cmath>
@@ -63,17 +64,6 @@ struct Judge {
 };
 
 // The farthest point of the shape from its centre.
-double reach_of(const Shape& shape) {
-    if (shape.type == ShapeType::circle) {
-        return shape.radius;
-    }
-    double reach = 0.0;
-    for (int i = 0; i < shape.polygon.count; ++i) {
-        reach = std::max(reach, length(shape.polygon.vertices[static_cast<std::size_t>(i)]));
-    }
-    return reach;
-}
-
 void judge_shape(const Judge& judge, const Shape& shape, const std::string& path) {
     if (shape.type == ShapeType::circle) {
         judge(path, "its radius", shape.radius, " m", false);
@@ -84,7 +74,7 @@ void judge_shape(const Judge& judge, const Shape& shape, const std::string& path
         judge(path, "its vertex " + std::to_string(i) + " x", v.x, " m", true);
         judge(path, "its vertex " + std::to_string(i) + " y", v.y, " m", true);
     }
-    judge(path, "its size", reach_of(shape), " m", false);
+    judge(path, "its size", circumradius(shape), " m", false);
 }
 
 // The mass properties and the products of them the engine forms. Speeds are
@@ -107,7 +97,8 @@ void judge_dynamics(const Judge& judge, const Scene& scene, const SceneBody& bod
         judge(path + ".angular_velocity", "its angular momentum",
               body.inertia * body.angular_velocity, " kg m^2/s", true);
     }
-    const double farthest = length(body.position) + reach_of(body.shape) + speed * scene.duration;
+    const double farthest =
+        length(body.position) + circumradius(body.shape) + speed * scene.duration;
     judge(path + ".position",
           "the farthest it can get from the origin, |position| + size + "
           "(|v| + |g| duration) duration =",

@@ -16,9 +16,6 @@ namespace impulse::harness {
 
 namespace {
 
-constexpr double epsilon = std::numeric_limits<double>::epsilon(); // 2^-52
-constexpr double infinity = std::numeric_limits<double>::infinity();
-
 // How far the engine's answers may stray from the ladder's.
 struct LadderBounds {
     double time = 0.0;

@@ -17,9 +17,6 @@ namespace impulse::harness {
 
 namespace {
 
-constexpr double epsilon = std::numeric_limits<double>::epsilon(); // 2^-52
-constexpr double infinity = std::numeric_limits<double>::infinity();
-
 // The spacing of doubles at x: what one rounding of a coordinate there can be off by, twice.
 double ulp_at(double x) {
     const double a = std::abs(x);

@@ -6,9 +6,16 @@
 
 #include "stress.h"
 
+#include <limits>
 #include <string>
 
 namespace impulse::harness {
+
+// The rows' two special numbers: the spacing of doubles at 1 (2^-52), which
+// rounding bounds are counted in, and the worst value of a row with nothing
+// to measure.
+inline constexpr double epsilon = std::numeric_limits<double>::epsilon();
+inline constexpr double infinity = std::numeric_limits<double>::infinity();
 
 // A row whose `passed` says whether `worst` keeps to `bound` as `kind` reads it.
 StressRow judged(std::string invariant, double worst, double bound, Bound kind, std::string detail);

@@ -1,6 +1,7 @@
 // The sweep's Pareto fronts and its two targets against Box2D (sweep.h):
 // pure functions of measured points, apart from running the grid.
 #include "sweep.h"
+#include "sweep_verdict.h"
 
 #include <algorithm>
 #include <cmath>
@@ -58,11 +59,6 @@ namespace {
 // A point a front can use: it ran and its error means something.
 bool measured_point(const SweepPoint& p) {
     return p.ok && !std::isnan(p.error) && !std::isnan(p.cost_median);
-}
-
-bool dominates(const SweepPoint& a, const SweepPoint& b) {
-    return a.cost_median <= b.cost_median && a.error <= b.error &&
-           (a.cost_median < b.cost_median || a.error < b.error);
 }
 
 bool is_box2d_60hz(const SweepPoint& p) {
@@ -135,7 +131,7 @@ SweepTargets evaluate_targets(const SweepResult& result) {
         const SweepPoint& b = points[box2d[k]];
         ++t.box2d_front_size;
         const bool dominated = std::any_of(points.begin(), points.end(), [&](const SweepPoint& p) {
-            return !is_reference_point(p) && measured_point(p) && dominates(p, b);
+            return !is_reference_point(p) && measured_point(p) && dominates(p, b, SweepAxis::error);
         });
         if (dominated) {
             ++t.box2d_front_dominated;

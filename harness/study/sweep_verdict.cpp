@@ -26,11 +26,6 @@ bool default_settings(const SweepPoint& p) {
     return p.substeps == 0 || p.substeps == 4;
 }
 
-bool dominates(const SweepPoint& a, const SweepPoint& b, SweepAxis axis) {
-    const double ea = axis_value(a, axis), eb = axis_value(b, axis);
-    return a.cost_median <= b.cost_median && ea <= eb && (a.cost_median < b.cost_median || ea < eb);
-}
-
 // The family's point at the dt nearest verdict_dt (default settings first),
 // then the cheapest; false when it has no measured point.
 bool pick_reference_point(const std::vector<SweepPoint>& points, const std::string& family,
@@ -114,6 +109,11 @@ std::string title_of(const SweepResult& r, const std::string& family) {
 
 double axis_value(const SweepPoint& point, SweepAxis axis) {
     return axis == SweepAxis::error ? point.error : point.energy_error;
+}
+
+bool dominates(const SweepPoint& a, const SweepPoint& b, SweepAxis axis) {
+    const double ea = axis_value(a, axis), eb = axis_value(b, axis);
+    return a.cost_median <= b.cost_median && ea <= eb && (a.cost_median < b.cost_median || ea < eb);
 }
 
 std::string sweep_dt_label(double dt) {

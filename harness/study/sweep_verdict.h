@@ -19,6 +19,9 @@ enum class SweepAxis { error, energy };
 // The axis's value of a point.
 double axis_value(const SweepPoint& point, SweepAxis axis);
 
+// Pareto dominance on cost and the axis: a is no worse on both and better on one.
+bool dominates(const SweepPoint& a, const SweepPoint& b, SweepAxis axis);
+
 // The time step a reference is compared at: its point nearest 60 Hz.
 inline constexpr double verdict_dt = 1.0 / 60.0;
 
