@@ -129,13 +129,22 @@ void require_failure_everywhere(const FakeProject& p, const std::string& sentenc
     const std::string fall_golden = slurp(p.golden("fall"));
     const std::string victim_golden = slurp(p.golden("victim"));
 
-    const Outcome checked = run_tool_in(p.dir, {"check"}, env);
+    const Outcome checked =
+        run_tool_in(p.dir, {"check", "--junit", "junit.xml", "--json", "check.json"}, env);
     require_exit(checked, 2);
     require_no_stack_trace(checked);
     INFO(checked.out);
     CHECK(has(checked.out, "ERROR  victim  " + sentence));
     CHECK(has(checked.out, "  ok     fall "));
     CHECK(has(checked.out, "2 scenes: 1 passed, 0 failed, 1 error"));
+    // A CI report says whose the error is: the engine's, not the scene's.
+    CHECK(has(slurp(p.dir / "junit.xml"), "type=\"engine error\""));
+    CHECK_FALSE(has(slurp(p.dir / "junit.xml"), "input error"));
+    const nlohmann::json report = nlohmann::json::parse(slurp(p.dir / "check.json"));
+    for (const nlohmann::json& scene : report["scenes"]) {
+        CHECK(scene["failure"] == (scene["name"] == "victim" ? nlohmann::json("engine error")
+                                                             : nlohmann::json(nullptr)));
+    }
 
     // bless neither overwrites the victim's golden nor writes a missing one.
     const Outcome blessed = run_tool_in(p.dir, {"bless"}, env);

@@ -319,7 +319,7 @@ TEST_CASE("junit_xml: one testcase per scene, failure for mismatches, error for 
                    "&quot;more&quot;\xEF\xBF\xBD\" type=\"physics mismatch\">") !=
           std::string::npos);
     CHECK(xml.find("<error message=\"goldens/broken.json: has a merge-conflict marker at line "
-                   "3\"") != std::string::npos);
+                   "3\" type=\"input error\"") != std::string::npos);
     CHECK(xml.find('\x01') == std::string::npos);
     CHECK(xml.find("first divergence: high.y at t = 0.5\n  golden 1") != std::string::npos);
     // The failure comes inside its own testcase.

@@ -54,8 +54,10 @@ engine (it ran the scene when blessed), the refusal FAILED.
                     exit code and the accept command; - writes it to standard
                     output (the table then goes to standard error)
   --junit FILE      JUnit XML: one testcase per scene, <failure> for a physics
-                    mismatch, <error> for a broken input or golden; - writes it
-                    to standard output (the table then goes to standard error);
+                    mismatch, <error> for a broken input or golden (type
+                    "input error") or an engine that failed ("engine error");
+                    - writes it to standard output (the table then goes to
+                    standard error);
                     with --compare a second testsuite, impulse.compare
   --compare[=LIST]  after the gate, what impulse compare --summary runs over
                     the same scenes: each in the reference engines of LIST

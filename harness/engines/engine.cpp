@@ -3,6 +3,7 @@
 // (docs/engine-protocol.md).
 #include "engine.h"
 
+#include "engine_failure.h"
 #include "engine_output.h"
 #include "engine_process.h"
 #include "input_error.h"
@@ -171,7 +172,7 @@ ProcessResult run_command(const EngineSpec& engine, const Scene& received, const
     if (process.not_started) {
         const std::string origin =
             engine.origin.empty() ? "" : " (the command of " + engine.origin + ")";
-        throw InputError(failed_label(engine, scene), "", *process.not_started + origin);
+        throw EngineFailure(failed_label(engine, scene), "", *process.not_started + origin);
     }
     return process;
 }
@@ -213,10 +214,15 @@ EngineRun run_external(const EngineSpec& engine, const Scene& scene, const Overr
         return result;
     }
     if (process.exit_code != 0) {
-        throw InputError(failed_label(engine, scene), "", failure_reason(process, engine));
+        throw EngineFailure(failed_label(engine, scene), "", failure_reason(process, engine));
     }
-    EngineOutput output = read_engine_output(
-        process.output, OutputContext{engine.name, &scene, &received, overrides_list(overrides)});
+    EngineOutput output;
+    try {
+        output = read_engine_output(process.output, OutputContext{engine.name, &scene, &received,
+                                                                  overrides_list(overrides)});
+    } catch (const InputError& unreadable) {
+        throw EngineFailure(unreadable);
+    }
     result.trajectory = std::move(output.trajectory);
     result.cost = output.cost;
     return result;

@@ -2,6 +2,7 @@
 
 #include "atomic_file.h"
 #include "engine.h"
+#include "engine_failure.h"
 #include "first_divergence.h"
 #include "golden_settings.h"
 #include "input_error.h"
@@ -232,6 +233,10 @@ SceneCheck check_scene(const Project& project, const EngineSpec& engine,
         check.stale = check.gold->scene_sha256 != scene.sha256;
 
         record_verdict(check, regen_command(project, engine, scene.name));
+    } catch (const EngineFailure& e) {
+        check.status = SceneCheck::Status::error;
+        check.error_source = SceneCheck::ErrorSource::engine;
+        check.message = e.what();
     } catch (const InputError& e) {
         check.status = SceneCheck::Status::error;
         check.message = e.what();

@@ -30,6 +30,7 @@ SceneCheck error_row(const std::string& scene_path, const std::exception_ptr& fa
     row.scene_file = scene_path;
     row.name = std::filesystem::path(scene_path).stem().string();
     row.status = SceneCheck::Status::error;
+    row.error_source = SceneCheck::ErrorSource::internal;
     row.message = scene_path + ": " + failure_text(failure);
     return row;
 }

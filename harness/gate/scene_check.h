@@ -25,8 +25,13 @@ struct SceneCheck {
     std::string scene_file;
     std::string golden_file;
     Status status = Status::passed;
-    bool stale = false;                // the golden's scene_sha256 differs from the scene's
-    std::string message;               // one sentence for failed / error
+    bool stale = false;  // the golden's scene_sha256 differs from the scene's
+    std::string message; // one sentence for failed / error
+    // Whose an error is: the input's (a scene, a golden, an option), the
+    // engine's (engine_failure.h), or the harness's own (an exception
+    // nothing expected, memory). JUnit's type of the <error>.
+    enum class ErrorSource { input, engine, internal };
+    ErrorSource error_source = ErrorSource::input;
     std::string details;               // multi-line text: divergences, failed expectations
     std::vector<std::string> warnings; // printed to stderr; never change the status
     // The scene's own, each naming its file (a polygon recentred): printed

@@ -92,7 +92,9 @@ Json scene_json(const SceneCheck& check, const CheckRun& run) {
     j["path"] = text_or_null(check.scene_file);
     j["golden"] = text_or_null(check.golden_file);
     j["status"] = check_status_key(check);
-    j["failure"] = check.status == Status::failed ? Json(failure_kind(check)) : Json(nullptr);
+    j["failure"] = check.status == Status::failed  ? Json(failure_kind(check))
+                   : check.status == Status::error ? Json(error_kind(check))
+                                                   : Json(nullptr);
     j["seconds"] = check.seconds;
     // The row's sentence (the terminal's), for every status but ok.
     j["message"] = check.status == Status::passed ? Json(nullptr) : text_or_null(check.message);

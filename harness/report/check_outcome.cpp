@@ -113,6 +113,18 @@ std::string failure_kind(const SceneCheck& check) {
     return "failed";
 }
 
+std::string error_kind(const SceneCheck& check) {
+    switch (check.error_source) {
+    case SceneCheck::ErrorSource::input:
+        break;
+    case SceneCheck::ErrorSource::engine:
+        return "engine error";
+    case SceneCheck::ErrorSource::internal:
+        return "internal error";
+    }
+    return "input error";
+}
+
 // The one-line description of a scene's outcome for tables.
 std::string outcome_line(const SceneCheck& check) {
     if (check.status == Status::failed && !check.stale && check.comparison) {

@@ -27,6 +27,9 @@ const char* status_word(SceneCheck::Status status);
 std::string display_name(const SceneCheck& check);
 // Why a scene failed, in two or three words (JUnit's failure type).
 std::string failure_kind(const SceneCheck& check);
+// Whose an error is, in two words (JUnit's error type): "input error",
+// "engine error" or "internal error".
+std::string error_kind(const SceneCheck& check);
 // The one-line description of a scene's outcome for tables: the first
 // divergence of a failed comparison, else the message, else a verdict.
 std::string outcome_line(const SceneCheck& check);

@@ -67,7 +67,7 @@ std::string gate_suite(const std::vector<SceneCheck>& checks) {
             message = failed ? "does not match its golden" : "could not be checked";
         }
         out += ">\n      <" + std::string(element) + " message=\"" + xml_escape(message, true) +
-               "\" type=\"" + (failed ? failure_kind(check) : std::string("input error")) + "\">" +
+               "\" type=\"" + (failed ? failure_kind(check) : error_kind(check)) + "\">" +
                xml_escape(junit_body(check)) + "</" + element + ">\n";
         out += "    </testcase>\n";
     }

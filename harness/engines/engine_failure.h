@@ -1,0 +1,19 @@
+// An engine that did not do its part: it would not start, exited with an
+// error, ran out of time, or wrote output that is not a trajectory of the
+// scene. Bad input to the harness like any other (exit 2, one sentence), but
+// the engine's rather than the scene's, so a report can tell a CI user which
+// of the two to look at (JUnit's type "engine error", not "input error").
+#pragma once
+
+#include "input_error.h"
+
+namespace impulse::harness {
+
+class EngineFailure : public InputError {
+  public:
+    using InputError::InputError;
+    // The same sentence, found while reading the engine's output.
+    explicit EngineFailure(const InputError& cause) : InputError(cause) {}
+};
+
+} // namespace impulse::harness
