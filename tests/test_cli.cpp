@@ -120,3 +120,10 @@ TEST_CASE("Overrides change the physics and are recorded", "[cli]") {
     CHECK(recorded);
     CHECK(t.frames.size() == 301); // 3 s at 0.01 s, plus the frame at t = 0
 }
+
+TEST_CASE("An option given twice takes its last value, as make and the compilers do", "[cli]") {
+    const Outcome o = impulse_tool("run " + scene_path("drop-box") + " --dt 0.5 --dt=0.01");
+    REQUIRE(o.exit_code == 0);
+    const impulse::harness::Trajectory t = impulse::harness::read_trajectory(o.out, "stdout");
+    CHECK(t.frames.size() == 301); // 3 s at 0.01 s, not at 0.5 s
+}

@@ -33,7 +33,9 @@ class UsageError : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-// Throws UsageError for an unknown option or a missing value.
+// Throws UsageError for an unknown option or a missing value. An option
+// given twice keeps its last value (README, "Other verbs"): scripts/gate
+// passes -j first, so that a user's own -j wins.
 Arguments parse_arguments(const std::vector<std::string>& args,
                           const std::vector<std::string>& options_with_value,
                           const std::vector<std::string>& known_flags);
