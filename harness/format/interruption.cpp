@@ -28,7 +28,7 @@ struct FolderSlot {
     std::array<char, PATH_MAX> folder{};
     std::array<char, PATH_MAX> file{};
 };
-std::array<FolderSlot, slot_count> folders{};
+std::array<FolderSlot, slot_count> folder_slots{};
 std::mutex claiming; // registrations only; never taken by the handler
 
 // Async-signal-safe throughout: kill, waitpid, unlink, rmdir, signal, raise.
@@ -44,7 +44,7 @@ void on_interrupt(int signal) {
             }
         }
     }
-    for (FolderSlot& slot : folders) {
+    for (FolderSlot& slot : folder_slots) {
         if (slot.live.load()) {
             ::unlink(slot.file.data());
             if (slot.folder[0] != '\0') { // a file alone has no folder of its own
@@ -91,7 +91,7 @@ int claim_folder_slot(const std::string& folder, const std::string& file) {
     }
     const std::lock_guard<std::mutex> lock(claiming);
     for (int i = 0; i < slot_count; ++i) {
-        FolderSlot& slot = folders[static_cast<std::size_t>(i)];
+        FolderSlot& slot = folder_slots[static_cast<std::size_t>(i)];
         if (!slot.live.load()) {
             std::memcpy(slot.folder.data(), folder.c_str(), folder.size() + 1);
             std::memcpy(slot.file.data(), file.c_str(), file.size() + 1);
@@ -104,7 +104,7 @@ int claim_folder_slot(const std::string& folder, const std::string& file) {
 
 void release_folder_slot(int slot) {
     if (slot >= 0) {
-        folders[static_cast<std::size_t>(slot)].live.store(false);
+        folder_slots[static_cast<std::size_t>(slot)].live.store(false);
     }
 }
 

@@ -36,10 +36,10 @@ namespace {
 
 // Every quantity of the scene, and the few products of them Chipmunk forms
 // (momentum, inverse mass, the farthest point reached), must lie within
-// [lowest, highest]: their products of three or four then stay finite and
+// [smallest_magnitude, largest_magnitude]: their products of three or four then stay finite and
 // non-zero in double, so no NaN or infinity reaches Chipmunk's sanity checks.
-constexpr double highest = 1e100;
-constexpr double lowest = 1e-100;
+constexpr double largest_magnitude = 1e100;
+constexpr double smallest_magnitude = 1e-100;
 
 cpVect to_cp(Vec2 v) {
     return cpv(v.x, v.y);
@@ -47,12 +47,6 @@ cpVect to_cp(Vec2 v) {
 
 Vec2 from_cp(cpVect v) {
     return {v.x, v.y};
-}
-
-std::string short_number(double value) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.3g", value);
-    return text;
 }
 
 // Debian's Chipmunk, built without NDEBUG, prints a two-line banner with
@@ -89,17 +83,17 @@ struct RangeJudge {
     void operator()(const std::string& path, const std::string& what, double value,
                     const std::string& unit, bool zero_allowed) const {
         const double size = std::fabs(value);
-        if (!std::isfinite(value) || size > highest) {
-            fail(path, what + " " + short_number(value) + unit + " is over " +
-                           short_number(highest) +
+        if (!std::isfinite(value) || size > largest_magnitude) {
+            fail(path, what + " " + significant_text(value, 3) + unit + " is over " +
+                           significant_text(largest_magnitude, 3) +
                            ", beyond which Chipmunk2D's products of it overflow");
         }
         if (size == 0.0 && !zero_allowed) {
             fail(path, what + " is 0, which Chipmunk2D divides by");
         }
-        if (size != 0.0 && size < lowest) {
-            fail(path, what + " " + short_number(value) + unit + " is under " +
-                           short_number(lowest) +
+        if (size != 0.0 && size < smallest_magnitude) {
+            fail(path, what + " " + significant_text(value, 3) + unit + " is under " +
+                           significant_text(smallest_magnitude, 3) +
                            ", below which Chipmunk2D's products of it underflow");
         }
     }
@@ -190,9 +184,9 @@ std::size_t index_of(const cpBody* body) {
 // Records one event per pair in the step where Chipmunk first finds it
 // touching (cpArbiterIsFirstContact), the velocities it arrived with from
 // pre-solve, the impulse and the velocities it leaves with from post-solve.
-class ContactRecorder {
+class ArbiterRecorder {
   public:
-    ContactRecorder(const Scene& scene, double restitution)
+    ArbiterRecorder(const Scene& scene, double restitution)
         : scene_(scene), restitution_(restitution) {}
 
     void begin_step(double t_end) { t_end_ = t_end; }
@@ -299,12 +293,12 @@ class ContactRecorder {
 };
 
 cpBool pre_solve_callback(cpArbiter* arb, cpSpace*, cpDataPointer data) {
-    static_cast<ContactRecorder*>(data)->pre_solve(arb);
+    static_cast<ArbiterRecorder*>(data)->pre_solve(arb);
     return cpTrue;
 }
 
 void post_solve_callback(cpArbiter* arb, cpSpace*, cpDataPointer data) {
-    static_cast<ContactRecorder*>(data)->post_solve(arb);
+    static_cast<ArbiterRecorder*>(data)->post_solve(arb);
 }
 
 // ---------------------------------------------------------------- simulator
@@ -449,7 +443,7 @@ class ChipmunkSimulator final : public Simulator {
         return cpPolyShapeNewRaw(body, shape.polygon.count, vertices.data(), 0.0);
     }
 
-    // A state past `highest` would soon overflow to the infinity or NaN that
+    // A state past `largest_magnitude` would soon overflow to the infinity or NaN that
     // Chipmunk's sanity check aborts on: the run stops with a sentence first.
     void require_finite_state(double t) const {
         for (std::size_t i = 0; i < bodies_.size(); ++i) {
@@ -460,18 +454,18 @@ class ChipmunkSimulator final : public Simulator {
             const double largest = std::max(
                 {std::fabs(s.position.x), std::fabs(s.position.y), std::fabs(s.angle),
                  std::fabs(s.velocity.x), std::fabs(s.velocity.y), std::fabs(s.angular_velocity)});
-            if (!(largest <= highest)) {
+            if (!(largest <= largest_magnitude)) {
                 throw InputError(scene_.file, body_path(scene_, i),
                                  "Chipmunk2D cannot go on at t = " + format_double(t) + " s: '" +
-                                     scene_.bodies[i].name + "' reached " + short_number(largest) +
-                                     " in position or velocity");
+                                     scene_.bodies[i].name + "' reached " +
+                                     significant_text(largest, 3) + " in position or velocity");
             }
         }
     }
 
     Scene scene_;
     ChipmunkSettings settings_;
-    ContactRecorder recorder_; // declared before space_: the space points to it
+    ArbiterRecorder recorder_; // declared before space_: the space points to it
     Space space_;
     std::vector<cpBody*> bodies_; // scene order; owned by space_
 };
