@@ -9,6 +9,7 @@
 
 #include <catch2/catch.hpp>
 #include <iostream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -126,6 +127,29 @@ TEST_CASE("The writer refuses frames that could never be read back", "[protocol]
     CHECK_THROWS_WITH(writer.text(), Catch::Contains("5 frames") && Catch::Contains("0 were"));
     write_free_flight(scene, writer);
     CHECK_THROWS_WITH(writer.frame({BodyState{}, BodyState{}}), Catch::Contains("one more"));
+}
+
+TEST_CASE("The writer names the frame and column of a NaN or an infinity, and the collision of "
+          "one",
+          "[protocol]") {
+    const Scene scene = parse_scene(two_discs, "pair.json");
+    TrajectoryWriter writer(scene, "test-engine");
+    writer.frame({BodyState{}, BodyState{}});
+    BodyState blown{};
+    blown.vy = std::numeric_limits<double>::quiet_NaN();
+    // Frame 1 is at t = 0.25 s; right.vy is its eleventh column.
+    CHECK_THROWS_WITH(writer.frame({BodyState{}, blown}),
+                      Catch::StartsWith("frame 1 (t = 0.25 s): right.vy is NaN"));
+    blown.vy = 0.0;
+    blown.omega = -std::numeric_limits<double>::infinity();
+    CHECK_THROWS_WITH(writer.frame({blown, BodyState{}}), Catch::Contains("left.omega is -inf"));
+    TrajectoryEvent hit;
+    hit.t = 0.5;
+    hit.a = "left";
+    hit.b = "wall";
+    hit.impulse = std::numeric_limits<double>::infinity();
+    CHECK_THROWS_WITH(writer.event(hit),
+                      Catch::Contains("'left' and 'wall' at t = 0.5 s") && Catch::Contains("inf"));
 }
 
 TEST_CASE("engine_main: exit 3 and the sentence for a refusal, 2 for a bad scene or command line, "

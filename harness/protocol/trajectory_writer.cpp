@@ -77,10 +77,32 @@ void TrajectoryWriter::frame(const std::vector<BodyState>& dynamic_bodies) {
     for (const BodyState& s : dynamic_bodies) {
         row.insert(row.end(), {s.x, s.y, s.angle, s.vx, s.vy, s.omega});
     }
+    // JSON has no NaN or infinity: said here, where the engine can still be
+    // named and the value placed, not when the text is written.
+    for (std::size_t i = 1; i < row.size(); ++i) {
+        if (!std::isfinite(row[i])) {
+            throw std::domain_error("frame " + std::to_string(trajectory_.frames.size()) +
+                                    " (t = " + harness::format_double(row[0]) +
+                                    " s): " + trajectory_.columns[i] + " is " +
+                                    harness::significant_text(row[i], 3) +
+                                    "; JSON has no such number (stop with a sentence, or throw "
+                                    "protocol::Unsupported if the scene is beyond the engine)");
+        }
+    }
     trajectory_.frames.push_back(std::move(row));
 }
 
 void TrajectoryWriter::event(const harness::TrajectoryEvent& event) {
+    const double values[] = {event.t,         event.point[0], event.point[1],  event.normal[0],
+                             event.normal[1], event.impulse,  event.vn_before, event.vn_after};
+    for (const double v : values) {
+        if (!std::isfinite(v)) {
+            throw std::domain_error("the collision of '" + event.a + "' and '" + event.b +
+                                    "' at t = " + harness::significant_text(event.t, 17) +
+                                    " s has a value that is " + harness::significant_text(v, 3) +
+                                    "; JSON has no such number");
+        }
+    }
     trajectory_.events.push_back(event);
 }
 

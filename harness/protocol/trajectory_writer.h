@@ -39,9 +39,11 @@ class TrajectoryWriter {
     // The next frame: one state per dynamic body, in scene order. Its time is
     // k * dt, computed here, so it always meets the protocol's frame times.
     // Throws std::logic_error for a wrong count of states or a frame past the
-    // last (steps + 1 frames).
+    // last (steps + 1 frames), std::domain_error naming the frame and column
+    // for a value that is NaN or infinite (JSON has no such number).
     void frame(const std::vector<BodyState>& dynamic_bodies);
-    // A resolved collision; events come in time order.
+    // A resolved collision; events come in time order. Throws
+    // std::domain_error for a value that is NaN or infinite.
     void event(const harness::TrajectoryEvent& event);
     // The engine's own measure of its work (simulation only, no start-up or I/O).
     void cost(double seconds, std::optional<long long> steps = std::nullopt);
