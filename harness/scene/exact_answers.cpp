@@ -426,12 +426,17 @@ Totals totals_in(const std::vector<double>& frame, const std::vector<Mass>& mass
         const double orbital = mass * cross(s.position, s.velocity);
         const double spin = m.inertia * s.omega;
         t.angular_momentum += orbital + spin;
-        t.angular_momentum_scale += std::abs(orbital) + std::abs(spin);
+        // The cross product's own two terms: a body moving along the line
+        // through the origin has x cross v = 0 from terms that are not.
+        t.angular_momentum_scale +=
+            mass * (std::abs(s.position.x * s.velocity.y) + std::abs(s.position.y * s.velocity.x)) +
+            std::abs(spin);
         const double kinetic =
             0.5 * mass * length_squared(s.velocity) + 0.5 * m.inertia * s.omega * s.omega;
         const double potential = -mass * dot(gravity, s.position);
         t.energy += kinetic + potential;
-        t.energy_scale += kinetic + std::abs(potential);
+        t.energy_scale += kinetic + mass * (std::abs(gravity.x * s.position.x) +
+                                            std::abs(gravity.y * s.position.y));
     }
     return t;
 }

@@ -174,8 +174,11 @@ std::optional<std::vector<Mass>> masses_of(const Scene& scene, const Trajectory&
 
 // Momentum, angular momentum about the origin and energy (kinetic + potential)
 // of every dynamic body in one frame, each with the sum of its terms'
-// magnitudes: conserved totals may be zero (two equal bodies meeting), so a
+// magnitudes (each product's own terms: m x_x v_y and m x_y v_x, m g_x x and
+// m g_y y): conserved totals may be zero (two equal bodies meeting), so a
 // relative tolerance is taken of the terms, the size of the numbers rounded.
+// A frame's scale may be 0 (a body at rest at the origin): a comparison of
+// frames takes the larger scale of the frames it spans.
 struct Totals {
     Vec2 momentum;
     double angular_momentum = 0.0;
