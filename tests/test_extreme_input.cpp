@@ -157,6 +157,24 @@ TEST_CASE("A listed or gas body whose weight overflows is exit 2 at its mass or 
     require_runs(ball_edit(R"("mass": 1)", R"("mass": 1e307)"));
 }
 
+TEST_CASE("A mass or inertia below the smallest normal double is exit 2 at its key: 1/m is inf",
+          "[extreme-input]") {
+    // 1 / 1e-310 overflows; before, the first contact turned the run into
+    // NaN blamed on "gravity, speeds, sizes, dt or duration".
+    const std::vector<BadFile> cases = {
+        bad_text("mass 1e-310", ball_edit(R"("mass": 1)", R"("mass": 1e-310)"), "bodies[1].mass",
+                 "gives a mass of 1e-310 kg, below the smallest normal double"),
+        bad_text("inertia 1e-310", ball_edit(R"("mass": 1)", R"("mass": 1, "inertia": 1e-310)"),
+                 "bodies[1].inertia", "gives a moment of inertia of 1e-310 kg m^2"),
+    };
+    for (const BadFile& bad : cases) {
+        require_scene_refused(bad);
+    }
+    // 1e-306 kg: its inertia m r^2 / 2 = 1e-306 / 32 = 3.1e-308 kg m^2 is
+    // normal too, so both inverses are finite: it loads and runs.
+    require_runs(ball_edit(R"("mass": 1)", R"("mass": 1e-306)"));
+}
+
 TEST_CASE("A contact band as wide as the thinnest body is exit 2 at solver.contact_tolerance",
           "[extreme-input]") {
     const std::string rule = "but the band in which bodies count as touching must be thinner "

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -86,6 +87,27 @@ MassSpec read_dynamics(const Node& node, SceneBody& body) {
     return spec;
 }
 
+// Every impulse is multiplied by 1/m and 1/I (physics.md, Eq. 9): below the
+// smallest normal double the inverse overflows to inf, and the first contact
+// would give NaN blamed on sizes or speeds.
+// Named at the first of `keys` the body gives (the key that set the value).
+void require_invertible(const Node& node, double value, const std::string& what,
+                        const std::string& unit, const std::vector<std::string>& keys) {
+    if (value >= std::numeric_limits<double>::min()) {
+        return;
+    }
+    Node given = node;
+    for (const std::string& key : keys) {
+        if (node.has(key)) {
+            given = node.member(key);
+            break;
+        }
+    }
+    given.fail("gives " + what + " of " + number_text(value) + " " + unit +
+               ", below the smallest normal double (2.2e-308), so its inverse, which every "
+               "impulse is multiplied by, is not finite; scale the scene's units");
+}
+
 void resolve_mass(const Node& node, const MassSpec& spec, SceneBody& body) {
     const MassProperties shape = mass_properties(body.shape);
     // A body that gives neither mass nor density has density 1 (kg per square
@@ -95,6 +117,7 @@ void resolve_mass(const Node& node, const MassSpec& spec, SceneBody& body) {
         node.fail("its shape and density give a mass of " + number_text(body.mass) +
                   " kg; it must be finite and > 0");
     }
+    require_invertible(node, body.mass, "a mass", "kg", {"mass", "density"});
     if (!body.rotation) {
         body.inertia = 0.0; // infinite: SceneBody::rotation says so
         return;
@@ -104,6 +127,8 @@ void resolve_mass(const Node& node, const MassSpec& spec, SceneBody& body) {
         node.fail("its shape and mass give a moment of inertia of " + number_text(body.inertia) +
                   " kg m^2; it must be finite and > 0");
     }
+    require_invertible(node, body.inertia, "a moment of inertia", "kg m^2",
+                       {"inertia", "mass", "density"});
 }
 
 // Every body name read so far and its index: a lookup, so that a long list of
