@@ -101,7 +101,8 @@ void print_next_steps(const std::string& project_file, bool placeholder, std::os
         << "                      expectation wants each impact's exact time to 1e-9, which\n"
         << "                      an engine that finds impact times meets: for one that\n"
         << "                      steps through them, loosen rtol and atol in\n"
-        << "                      scenes/drop.json to what it promises (e.g. 0.05 and dt)\n"
+        << "                      scenes/drop.json to what it promises (e.g. 0.05 and\n"
+        << "                      |g| dt, 0.1: a step of time, of speed and of apex height)\n"
         << "  3. impulse check    the gate: exit 0 while nothing moved, 1 naming the scene,\n"
         << "                      body, channel and time when something did\n"
         << "  4. impulse regen    accepts an intended change (rewrites the goldens)\n";
