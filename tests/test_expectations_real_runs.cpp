@@ -140,11 +140,14 @@ TEST_CASE("head-on expectations hold on real runs, including a velocity that can
         bool circles;
         const char* integrator;
         double dt;
+        bool simultaneous = false;
     };
     const Case cases[] = {
         {1.0, 1.0, 3.0, 0.0, 1.0, true, "symplectic-euler", 1.0 / 60.0}, // vA' = 0 exactly
         {1.0, 3.0, 4.0, -1.0, 0.5, false, "rk4", 1.0 / 30.0},
         {5.0, 0.2, 0.7, -2.5, 0.9, true, "verlet", 1.0 / 60.0},
+        // Faces meeting whole: two events at one instant, whose impulses sum to j.
+        {3.7, 0.013, 1.0, -2.0, 0.93, false, "verlet", 1.0 / 60.0, true},
     };
     for (const Case& c : cases) {
         INFO("masses " << c.ma << ", " << c.mb << " e " << c.e);
@@ -162,6 +165,9 @@ TEST_CASE("head-on expectations hold on real runs, including a velocity that can
         Json scene = scene_json(0.0, c.e, c.dt, meet + 0.5, c.integrator,
                                 {disc("a", c.ma, 0.0, c.va), disc("b", c.mb, 2.0, c.vb)},
                                 {{{"kind", "head-on"}, {"a", "a"}, {"b", "b"}, {"rtol", 1e-9}}});
+        if (c.simultaneous) {
+            scene["solver"]["contacts"] = "simultaneous";
+        }
         const std::vector<ExpectationResult> results = run_and_evaluate(scene);
         INFO(listing(results));
         CHECK(results.size() == 5);
