@@ -157,6 +157,27 @@ TEST_CASE("regen changes a golden after an intended change and is refused in CI 
     require_exit(run_tool_in(p.dir / "src", {"check"}), 0);
 }
 
+TEST_CASE("regen names a golden's changed solver settings, even when the numbers are identical",
+          "[init-regen]") {
+    BlessedProject p;
+    const fs::path golden = p.dir / "goldens" / "drop.json";
+    // The golden says it ran with another contact tolerance: check fails on
+    // it, so regen must say what it rewrites, not "identical".
+    std::string text = slurp(golden);
+    const std::string tolerance = "\"contact_tolerance\": 1e-09";
+    REQUIRE(text.find(tolerance) != std::string::npos);
+    text.replace(text.find(tolerance), tolerance.size(), "\"contact_tolerance\": 1e-06");
+    spit(golden, text);
+    require_exit(run_tool_in(p.dir, {"check"}), 1);
+    const Outcome changed = run_tool_in(p.dir, {"regen"});
+    require_exit(changed, 0);
+    INFO(changed.out);
+    CHECK(has(changed.out, "changed    drop"));
+    CHECK(has(changed.out, "contact_tolerance"));
+    CHECK(has(changed.out, "the numbers are identical"));
+    require_exit(run_tool_in(p.dir, {"check"}), 0);
+}
+
 TEST_CASE("init --engine-command names the user's engine in the project file, or writes nothing",
           "[init-regen]") {
     TempDir temp;

@@ -364,7 +364,19 @@ Blessing prepare_blessing(const Project& project, const EngineSpec& engine,
             if (old.scene_sha256 != scene.sha256) {
                 blessing.summary += "the scene itself changed since the last blessing\n";
             }
-            blessing.summary += describe(compare(old, trajectory, std::nullopt));
+            // What moved besides the numbers: a golden recorded with other
+            // settings is a change check fails on, so bless names it too
+            // (an engine author was told "identical" for a new solver block).
+            const SettingsComparison settings = compare_settings(old, trajectory);
+            for (const std::string& line : settings.differences) {
+                blessing.summary += line + "\n";
+            }
+            for (const std::string& line : settings.notes) {
+                blessing.summary += line + "\n";
+            }
+            const Comparison numbers = compare(old, trajectory, std::nullopt);
+            blessing.summary +=
+                numbers.identical ? "the numbers are identical\n" : describe(numbers);
         } catch (const InputError& e) {
             if (blessing.summary.empty()) {
                 blessing.summary = std::string("the old golden does not parse: ") + e.what() + "\n";
