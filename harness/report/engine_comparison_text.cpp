@@ -104,7 +104,7 @@ std::string command_text(const std::vector<std::string>& command) {
 void write_scene(std::string& out, const EngineComparison& c, std::size_t name_width) {
     out += "\n" + c.name + " (" + printable_path(c.file) + ")";
     if (c.nothing_declared()) {
-        out += ": no observables declared\n";
+        out += ": no observables declared (the scene has no box2d.observables block)\n";
         return;
     }
     if (c.skipped()) {
@@ -207,7 +207,7 @@ void write_summary(std::string& out, const ComparisonReport& report, bool summar
             break;
         case SceneStatus::no_observables:
             label = "none    ";
-            what = "no observables declared, nothing compared";
+            what = "no observables declared (no box2d.observables block), nothing compared";
             break;
         case SceneStatus::passed:
             what = judged_column(c)
