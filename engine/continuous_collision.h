@@ -3,9 +3,9 @@
 // thin one within a step is never seen. With ccd every pair's motion over the
 // step is swept by conservative advancement: from a free sample, step forward
 // by as long as the pair's gap, padded by the contact tolerance, cannot be
-// closed (at the fastest its points can move, or along the axis that
-// separates it, whichever allows longer); each sample is where the seed's test
-// is made.
+// closed (at the fastest its points can move, along the axis that separates
+// it, or along that axis vertex by vertex, whichever allows longest); each
+// sample is where the seed's test is made.
 #pragma once
 
 #include "configuration.h"

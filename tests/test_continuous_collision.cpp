@@ -343,6 +343,91 @@ TEST_CASE("a rod spinning 10 rad per step never passes into a wall unseen", "[un
     }
 }
 
+namespace {
+
+// A 0.14 x 0.06 m box spinning at 21.77 rad/s while it drifts along a wall's
+// face (x = -0.9) at 3.26 m/s and toward it at only 0.479 m/s, zero gravity,
+// e = 1: corners pass within millimetres of the face, and two of them hit it
+// (an exact event-driven reference at 40 digits: at 0.0362628218289 s and
+// 0.0440572257396 s, then none before 0.1 s). Each sample's fastest point
+// moves at about 1.7 m/s against a corner's 0.06 m/s toward the face, so
+// charging every point that speed needed more than 200 samples per step.
+World grazing_world() {
+    return make_world({static_body(make_box(0.25, 5.0), {-1.15, 0}),
+                       dynamic_body(make_box(0.07, 0.03), 0.37, {-0.808921, -0.296334}, -24.19266,
+                                    {-0.479, 3.2575}, -21.7704)},
+                      {0, 0}, 1.0, solver_with(true));
+}
+
+// The first time a corner of the grazing box reaches the face, from its free
+// motion in closed form (libm's sine and cosine, bisection to the last bit).
+double first_corner_touch() {
+    const Vec2 corners[4] = {{0.07, 0.03}, {-0.07, 0.03}, {-0.07, -0.03}, {0.07, -0.03}};
+    const auto gap = [](Vec2 r, double t) {
+        const double angle = -24.19266 - 21.7704 * t;
+        return -0.808921 - 0.479 * t + std::cos(angle) * r.x - std::sin(angle) * r.y + 0.9;
+    };
+    for (int k = 1; k < 100000; ++k) {
+        const double t = k * 1e-6;
+        for (const Vec2 r : corners) {
+            if (gap(r, t) < 0.0) {
+                double lo = t - 1e-6;
+                double hi = t;
+                while (hi - lo > 1e-16) {
+                    const double mid = 0.5 * (lo + hi);
+                    (gap(r, mid) < 0.0 ? hi : lo) = mid;
+                }
+                return lo;
+            }
+        }
+    }
+    return -1.0;
+}
+
+double kinetic_energy(const World& world) {
+    const Body& box = world.bodies[1];
+    return 0.5 * length_squared(box.state.velocity) / box.inv_mass +
+           0.5 * box.state.angular_velocity * box.state.angular_velocity / box.inv_inertia;
+}
+
+} // namespace
+
+TEST_CASE("a box spinning along a wall is swept point by point, at the exact touch",
+          "[unit][ccd]") {
+    const double exact = first_corner_touch();
+    REQUIRE(std::fabs(exact - 0.0362628218289) < 1e-12); // the reference's
+    for (const double h : {1.0 / 97.0, 1.0 / 1000.0}) {
+        INFO("dt " << h);
+        World world = grazing_world();
+        const double energy = kinetic_energy(world);
+        const double tolerance = world.solver.contact_tolerance;
+        std::vector<CollisionEvent> events;
+        std::optional<StepError> error;
+        const int steps = static_cast<int>(std::ceil(0.1 / h));
+        for (int k = 0; k < steps && !error; ++k) {
+            const Configuration start = configuration_of(world);
+            const std::size_t before = events.size();
+            error = step(world, k * h, h, events);
+            if (error) {
+                break;
+            }
+            const double t0 = k * h;
+            const double first = events.size() > before ? events[before].time - t0 : h;
+            const double last = events.size() > before ? events.back().time - t0 : h;
+            INFO("step " << k);
+            CHECK(deepest(world, start, first, 400) >= -tolerance * (1.0 + 1e-6));
+            CHECK(deepest(world, configuration_of(world), last - h, 400) >=
+                  -tolerance * (1.0 + 1e-6));
+        }
+        REQUIRE_FALSE(error);
+        REQUIRE(events.size() == 2);
+        CHECK(std::fabs(events[0].time - exact) <=
+              time_tolerance(world.solver, std::fabs(events[0].vn_before)));
+        CHECK(std::fabs(events[1].time - 0.0440572257396) < 1e-8);
+        CHECK(std::fabs(kinetic_energy(world) - energy) <= 1e-12 * energy); // e = 1
+    }
+}
+
 TEST_CASE("a sweep that needs more than max_search_iterations samples ends in sweep_not_converged",
           "[unit][ccd]") {
     // The rod's end closes on the wall at 300 |sin theta| m/s against a bound
