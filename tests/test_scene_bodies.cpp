@@ -109,6 +109,27 @@ TEST_CASE("a polygon already centred is left alone", "[scene]") {
     CHECK(scene.bodies[0].shape.polygon.vertices[0] == Vec2{-1, -1});
 }
 
+TEST_CASE("a sliver is recentred when its centroid is off by a fraction of its width", "[scene]") {
+    // A triangle 2 m long and h = 2.1e-9 m tall, given with its base on the
+    // origin: the centroid is h / 3 = 7e-10 m up, far below 1e-9 of its size
+    // but a third of its width, and left there the origin lies on its base
+    // (inradius about the origin 0: refused as having no thickness).
+    const double h = 2.1e-9;
+    const Scene off = parse_scene(
+        scene_with_body(R"("shape": {"polygon": [[-1, 0], [1, 0], [0, 2.1e-9]]})"), test_file);
+    REQUIRE(off.warnings.size() == 1);
+    CHECK(std::abs(off.bodies[0].position.y - h / 3.0) <= 1e-24);
+    // About the centroid a triangle's sides are a third of their altitudes
+    // away; the base's altitude, h, is the least.
+    CHECK(std::abs(impulse::inradius(off.bodies[0].shape) - h / 3.0) <= 1e-6 * h);
+    // The same triangle given centred (up to the centroid's rounding, about
+    // 1e-16 m) is left alone.
+    const Scene centred = parse_scene(
+        scene_with_body(R"("shape": {"polygon": [[-1, -7e-10], [1, -7e-10], [0, 1.4e-9]]})"),
+        test_file);
+    CHECK(centred.warnings.empty());
+}
+
 TEST_CASE("bodies may touch at t = 0, and static bodies may overlap", "[scene]") {
     SECTION("a box resting exactly on the ground") {
         CHECK(rejection(scene_with_bodies(R"([

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,8 @@ constexpr int min_polygon_vertices = 3;
 // A polygon whose centroid is further than this fraction of its size from the
 // origin is recentred (docs/design.md: "centroid at the origin or recentred").
 constexpr double centroid_tolerance = 1e-9;
+// ... or further than this fraction of its least width (recentre_on_centroid).
+constexpr double width_tolerance = 1e-3;
 
 Shape read_box(const Node& node) {
     if (!node.json().is_array() || node.json().size() != 2) {
@@ -147,8 +150,36 @@ Shape read_shape(const Node& node) {
     return read_polygon(value);
 }
 
+namespace {
+
+// The polygon's least width: over its edges, the furthest vertex from the
+// edge's line (a convex polygon's narrowest strip lies flush with an edge).
+double least_width(const Polygon& polygon) {
+    double least = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < polygon.count; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        double furthest = 0.0;
+        for (int j = 0; j < polygon.count; ++j) {
+            const Vec2 v = polygon.vertices[static_cast<std::size_t>(j)];
+            furthest = std::max(furthest, dot(polygon.normals[k], polygon.vertices[k] - v));
+        }
+        least = std::min(least, furthest);
+    }
+    return least;
+}
+
+} // namespace
+
 // Moves a polygon's vertices by minus its centroid; returns the centroid when
-// it was off the origin (by more than centroid_tolerance of the size).
+// it was off the origin by more than centroid_tolerance of its size, or more
+// than width_tolerance of its least width. The width matters for a sliver:
+// the triangle [[-1, 0], [1, 0], [0, 2.1e-9]] has its centroid 7e-10 m off, a
+// tiny fraction of its size but a third of its width, and left there its
+// origin lay on an edge, so its inradius about the origin (engine/shape.h) was
+// 0 and the scene was refused as having no thickness. An offset of a
+// thousandth of the width takes at most that much off the inradius, and stays
+// far above the centroid's own rounding (its size times 2^-52), which would
+// otherwise make every given-centred sliver "off its centroid".
 std::optional<Vec2> recentre_on_centroid(Shape& shape) {
     if (shape.type != ShapeType::polygon) {
         return std::nullopt;
@@ -159,7 +190,9 @@ std::optional<Vec2> recentre_on_centroid(Shape& shape) {
         size = std::max(size, length(polygon.vertices[static_cast<std::size_t>(i)]));
     }
     const Vec2 centroid = mass_properties(shape).centroid;
-    if (!(length(centroid) > centroid_tolerance * size)) {
+    const double offset = length(centroid);
+    if (!(offset > centroid_tolerance * size) &&
+        !(offset > width_tolerance * least_width(polygon))) {
         return std::nullopt;
     }
     std::vector<Vec2> moved;
