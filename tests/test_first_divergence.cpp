@@ -92,6 +92,29 @@ TEST_CASE("Ties: an event before a frame at the same time, then column order",
         REQUIRE(d != nullptr);
         CHECK(d->column == "events[0].vn_after");
     }
+    SECTION("an event stamped t0 + dt, a few ULP after the frame's k dt: still the event") {
+        Trajectory gold = golden();
+        gold.events[0].t = up(up(0.5)); // two ULP past the frame at 0.5
+        Trajectory value = gold;
+        value.frames[2][5] = up(value.frames[2][5]);
+        value.events[0].impulse = up(value.events[0].impulse);
+        const std::optional<FirstDivergence> first =
+            first_divergence_of(compare(gold, value, std::nullopt));
+        REQUIRE(first);
+        CHECK(first->divergence.column == "events[0].impulse");
+        CHECK(first->is_event);
+    }
+    SECTION("an event a millionth of a step after a frame: the frame comes first") {
+        Trajectory gold = golden();
+        gold.events[0].t = 0.5 + 0.25e-6;
+        Trajectory value = gold;
+        value.frames[2][5] = up(value.frames[2][5]);
+        value.events[0].impulse = up(value.events[0].impulse);
+        const Comparison c = compare(gold, value, std::nullopt);
+        const Divergence* d = earliest_divergence(c);
+        REQUIRE(d != nullptr);
+        CHECK(d->column == "box.vy");
+    }
     SECTION("two frame columns at the same time: the golden's column order") {
         Trajectory value = golden();
         value.frames[1][5] = up(value.frames[1][5]); // box.vy

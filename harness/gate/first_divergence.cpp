@@ -88,6 +88,14 @@ bool is_event_divergence(const Divergence& divergence) {
 }
 
 const Divergence* earliest_divergence(const Comparison& comparison) {
+    // An event stamped with its step's end, t0 + dt, may differ from the
+    // frame's k dt in the last bits; within 1e-9 of a step it is the frame's
+    // collision, as observables.cpp reads it (an engine that stamped t0 + dt
+    // was told a frame's angle differed "before any collision differs" by
+    // 1 ULP of time).
+    const double slack = std::isfinite(comparison.frame_step) && comparison.frame_step > 0.0
+                             ? 1e-9 * comparison.frame_step
+                             : 0.0;
     const Divergence* best = nullptr;
     for (const Divergence& d : comparison.first_divergences) {
         if (best == nullptr) {
@@ -96,9 +104,14 @@ const Divergence* earliest_divergence(const Comparison& comparison) {
         }
         const double t = time_key(d.t);
         const double best_t = time_key(best->t);
+        const bool event = is_event_divergence(d);
+        const bool best_event = is_event_divergence(*best);
         // first_divergences lists frames in column order, then events in
         // index order, so keeping the earlier entry on a tie is the rule.
-        if (t < best_t || (t == best_t && is_event_divergence(d) && !is_event_divergence(*best))) {
+        const bool earlier = event == best_event ? t < best_t
+                             : event             ? t <= best_t + slack
+                                                 : t < best_t - slack;
+        if (earlier) {
             best = &d;
         }
     }

@@ -14,7 +14,8 @@ namespace impulse::harness {
 
 // The earliest value that differs, over frames AND events, by golden time.
 // Ties at the same time: an event before a frame (the collision happens
-// inside the step whose end the frame records); among frames, the column
+// inside the step whose end the frame records; an event within 1e-9 of the
+// golden's frame step of a frame's time is at it); among frames, the column
 // order of the golden (body by body in scene order, then x, y, angle, vx,
 // vy, omega); among events, the lower index, then the field order t, point,
 // normal, impulse, vn_before, vn_after. A time that is not a number (a frame
