@@ -90,6 +90,16 @@ TEST_CASE("regen writes no golden when one scene of three refuses", "[regen-all-
         const Outcome check = run_tool({"check", "--root", root, "drop-circle", "glancing"});
         CHECK(check.exit_code == 0);
     }
+    SECTION("--partial on a scene never blessed says it has no golden, not an old one") {
+        fs::remove(p.golden("drop-box"));
+        const Outcome partial = run_tool({"regen", "--root", root, "--partial"});
+        INFO(partial.out << partial.err);
+        CHECK(partial.exit_code == 1);
+        CHECK_FALSE(fs::exists(p.golden("drop-box")));
+        CHECK(partial.out.find("--partial: 2 goldens were written, but drop-box has no golden "
+                               "yet") != std::string::npos);
+        CHECK(partial.out.find("old motion") == std::string::npos);
+    }
 }
 
 TEST_CASE("regen writes no golden when one scene of three cannot be loaded",

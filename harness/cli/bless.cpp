@@ -10,6 +10,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <ostream>
+#include <string>
+#include <system_error>
 
 namespace impulse::harness::cli {
 
@@ -141,8 +143,20 @@ struct Preparation {
     // own expectations) and broken ones (not loaded or not run, their
     // sentence printed already), in the order met.
     std::vector<std::string> refusing;
-    std::vector<std::string> failing; // the broken ones among them
+    std::vector<std::string> failing;       // the broken ones among them
+    std::vector<std::string> never_blessed; // those among them with no golden yet
 };
+
+// Notes a scene that holds the writing back, and whether it has a golden:
+// --partial leaves an old golden inconsistent with the others, and a
+// missing one missing.
+void note_refusing(Preparation& p, const std::string& name, const std::string& golden) {
+    p.refusing.push_back(name);
+    std::error_code error;
+    if (!std::filesystem::exists(golden, error)) {
+        p.never_blessed.push_back(name);
+    }
+}
 
 // Runs every (engine, scene) pair and decides each golden, writing none;
 // the progress bar is erased before returning.
@@ -165,11 +179,12 @@ Preparation prepare_all(const Project& project, const std::vector<EngineSpec>& e
                 });
                 const std::string name = several ? engine.name + "/" + b.name : b.name;
                 if (b.outcome == Blessing::Outcome::refused) {
-                    p.refusing.push_back(name);
+                    note_refusing(p, name, b.golden_file);
                 }
                 p.ready.push_back({name, std::move(b)});
             } catch (const InputError& e) {
-                p.refusing.push_back(several ? engine.name + "/" + stem : stem);
+                note_refusing(p, several ? engine.name + "/" + stem : stem,
+                              golden_path(project, engine, stem));
                 p.failing.push_back(p.refusing.back());
                 progress.without_bar([&] { err << e.what() << "\n" << std::flush; });
             }
@@ -212,6 +227,36 @@ std::string why_held(const Preparation& p) {
     return why;
 }
 
+// What --partial left: "--partial: 3 goldens were written, but a was not
+// regenerated and still holds the old motion, so the goldens are
+// inconsistent until it is fixed and regenerated; b has no golden yet".
+std::string partial_note(const Preparation& p, int written) {
+    std::vector<std::string> stale;
+    for (const std::string& name : p.refusing) {
+        if (std::find(p.never_blessed.begin(), p.never_blessed.end(), name) ==
+            p.never_blessed.end()) {
+            stale.push_back(name);
+        }
+    }
+    std::string text = "--partial: " + std::to_string(written) + " golden" +
+                       (written == 1 ? " was" : "s were") + " written, but ";
+    if (!stale.empty()) {
+        const bool one = stale.size() == 1;
+        text += listed(stale) + (one ? " was" : " were") + " not regenerated and still " +
+                (one ? "holds" : "hold") +
+                " the old motion, so the goldens are inconsistent until " +
+                (one ? "it is" : "they are") + " fixed and regenerated";
+    }
+    if (!p.never_blessed.empty()) {
+        const bool one = p.never_blessed.size() == 1;
+        text += std::string(stale.empty() ? "" : "; ") + listed(p.never_blessed) +
+                (one ? " has" : " have") + " no golden yet, so check reports " +
+                (one ? "it" : "them") + " until " + (one ? "it is" : "they are") +
+                " fixed and blessed";
+    }
+    return text + "\n";
+}
+
 // Writes the prepared goldens, or, when a scene refuses and `partial` is
 // not given, none of them: a goldens folder half from one engine and half
 // from another would pass the gate for the wrong reason.
@@ -248,12 +293,7 @@ BlessCounts write_prepared(Preparation& p, bool partial, std::ostream& out, std:
             out << "; fix " << (p.refusing.size() == 1 ? "it" : "them") << "\n";
         }
     } else if (!p.refusing.empty()) {
-        int written = counts.created + counts.changed;
-        out << "--partial: " << written << " golden" << (written == 1 ? " was" : "s were")
-            << " written, but " << listed(p.refusing) << (p.refusing.size() == 1 ? " was" : " were")
-            << " not regenerated and still " << (p.refusing.size() == 1 ? "holds" : "hold")
-            << " the old motion, so the goldens are inconsistent until "
-            << (p.refusing.size() == 1 ? "it is" : "they are") << " fixed and regenerated\n";
+        out << partial_note(p, counts.created + counts.changed);
     }
     return counts;
 }
