@@ -193,7 +193,8 @@ TEST_CASE("An engine that hangs is killed at the project's time limit with its p
     const fs::path pid_file = p.temp.dir / "grandchild.pid";
     p.victim_runs({"sh", engines_dir + "/hang.sh", pid_file.string()});
     const std::string sentence = "engine 'fake' failed on " + p.victim_file +
-                                 ": did not finish within 1 s; its process group was killed: "
+                                 ": did not finish within 1 s; its process group was killed "
+                                 "(raise its time_limit at impulse.json: engines[0]): "
                                  "(nothing on standard error)";
     const Outcome checked = run_tool_in(p.dir, {"check"});
     require_exit(checked, 2);

@@ -373,6 +373,24 @@ TEST_CASE("an engine that fails is one sentence naming engine, scene and message
               failed + "cannot start '/nonexistent/engine': No such file or directory (the "
                        "command of impulse.json: engines[0])");
     }
+    SECTION("a whole command line in one word: the words of an array are named") {
+        EngineSpec engine = fake({});
+        engine.command = {"build/engine --fast"};
+        engine.origin = "impulse.json: engines[0]";
+        CHECK(refusal(engine, f.fall) ==
+              failed + "cannot start 'build/engine --fast': No such file or directory; the word "
+                       "holds a space, and a command is one word per element, as "
+                       "[\"build/engine\", \"--fast\"] (the command of impulse.json: "
+                       "engines[0])");
+    }
+    SECTION("a bare name not in PATH: PATH is named") {
+        EngineSpec engine = fake({});
+        engine.command = {"no-such-engine-anywhere"};
+        CHECK(refusal(engine, f.fall) ==
+              failed + "cannot start 'no-such-engine-anywhere': No such file or directory; a "
+                       "word without a '/' is looked up in PATH (write ./no-such-engine-anywhere "
+                       "for a file in the working directory)");
+    }
     SECTION("a file that is not executable") {
         spit(f.temp.dir / "engine.sh", "#!/bin/sh\necho {}\n");
         ::chmod((f.temp.dir / "engine.sh").c_str(), 0644);

@@ -135,12 +135,26 @@ std::string write_scene_file(const std::filesystem::path& folder, const Scene& s
     return path;
 }
 
+// Where the time limit a run ran out of is set: the project file's
+// engine entry ("raise time_limit at ./impulse.json: engines[0]"), or, for
+// --engine-command, the way to give it one (docs/project-file.md).
+std::string time_limit_hint(const EngineSpec& engine) {
+    if (engine.origin == "--engine-command") {
+        return " (an engine given with --engine-command has 60 s; name it in a project file "
+               "with a time_limit to give it longer)";
+    }
+    if (engine.origin.rfind("the reference ", 0) == 0 || engine.origin.empty()) {
+        return "";
+    }
+    return " (raise its time_limit at " + engine.origin + ")";
+}
+
 // How the process ended when it did not end with exit 0 or 3, and its message.
 std::string failure_reason(const ProcessResult& process, const EngineSpec& engine) {
     std::string reason;
     if (process.timed_out) {
         reason = "did not finish within " + format_double(engine.time_limit) +
-                 " s; its process group was killed";
+                 " s; its process group was killed" + time_limit_hint(engine);
     } else if (process.overflowed) {
         reason = "wrote more than " + trajectory_limit_text() +
                  " on standard output; its process group was killed";

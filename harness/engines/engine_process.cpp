@@ -78,6 +78,23 @@ void make_pipe(int ends[2]) {
     ::fcntl(ends[0], F_SETFL, ::fcntl(ends[0], F_GETFL) | O_NONBLOCK);
 }
 
+// Why a command word may not start, when the word says: a whole command line
+// given as one word ("build/engine --fast"), or a bare name looked up in PATH.
+std::string start_hint(const std::string& program, int code) {
+    if (code != ENOENT) {
+        return "";
+    }
+    if (program.find_first_of(" \t") != std::string::npos) {
+        return "; the word holds a space, and a command is one word per element, as "
+               "[\"build/engine\", \"--fast\"]";
+    }
+    if (program.find('/') == std::string::npos) {
+        return "; a word without a '/' is looked up in PATH (write ./" + program +
+               " for a file in the working directory)";
+    }
+    return "";
+}
+
 // posix_spawnp in a new process group, stdin /dev/null, stdout and stderr the
 // pipes, in the working directory; the error text when it cannot start.
 std::optional<std::string> spawn(const ProcessRequest& request, int out, int err, pid_t& pid) {
@@ -110,7 +127,8 @@ std::optional<std::string> spawn(const ProcessRequest& request, int out, int err
     if (code == 0) {
         return std::nullopt;
     }
-    return "cannot start '" + printable_path(request.command.front()) + "': " + std::strerror(code);
+    return "cannot start '" + printable_path(request.command.front()) +
+           "': " + std::strerror(code) + start_hint(request.command.front(), code);
 }
 
 // Reads what is there without blocking; false at end of file.
