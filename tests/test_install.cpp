@@ -129,6 +129,30 @@ fs::path installed_scene(const std::string& name) {
 
 } // namespace
 
+namespace {
+
+// The targets of a Markdown page's relative links, "](target)" without an
+// "#anchor", leaving out web addresses and links within the page.
+std::vector<std::string> relative_links(const std::string& page) {
+    std::vector<std::string> targets;
+    for (std::size_t at = page.find("]("); at != std::string::npos; at = page.find("](", at + 2)) {
+        const std::size_t end = page.find_first_of(")# \n", at + 2);
+        if (end == std::string::npos) {
+            break;
+        }
+        const std::string target = page.substr(at + 2, end - at - 2);
+        if (!target.empty() && target.find("://") == std::string::npos &&
+            (target.size() > 3 && (target.compare(target.size() - 3, 3, ".md") == 0 ||
+                                   target.compare(target.size() - 4, 4, ".png") == 0 ||
+                                   target.compare(target.size() - 4, 4, ".svg") == 0))) {
+            targets.push_back(target);
+        }
+    }
+    return targets;
+}
+
+} // namespace
+
 TEST_CASE("cmake --install puts the tool, the scenes, the documents, the examples and the CMake "
           "package under the prefix",
           "[.][install]") {
@@ -143,9 +167,25 @@ TEST_CASE("cmake --install puts the tool, the scenes, the documents, the example
     require_copies(source / "harness" / "scenes", prefix / "share" / "impulse" / "scenes");
     CHECK(fs::is_regular_file(prefix / "share" / "impulse" / "scenes" / "scale" /
                               "gas-circles-10.json"));
-    require_copies(source / "docs", prefix / "share" / "doc" / "impulse");
+    require_copies(source / "docs", prefix / "share" / "doc" / "impulse" / "docs");
     CHECK(slurp(prefix / "share" / "doc" / "impulse" / "README.md") == slurp(source / "README.md"));
     require_copies(source / "examples", prefix / "share" / "impulse" / "examples");
+    // Every relative link of an installed page leads to an installed file.
+    int links = 0;
+    for (const fs::path& folder :
+         {prefix / "share" / "doc" / "impulse", prefix / "share" / "impulse" / "examples"}) {
+        for (const fs::directory_entry& e : fs::recursive_directory_iterator(folder)) {
+            if (e.path().extension() != ".md") {
+                continue;
+            }
+            for (const std::string& target : relative_links(slurp(e.path()))) {
+                INFO(e.path().string() << " links " << target);
+                CHECK(fs::exists(e.path().parent_path() / target));
+                ++links;
+            }
+        }
+    }
+    CHECK(links > 50);
     for (const char* file :
          {"impulseConfig.cmake", "impulseConfigVersion.cmake", "impulseTargets.cmake"}) {
         CHECK(fs::is_regular_file(prefix / "lib" / "cmake" / "impulse" / file));
