@@ -270,6 +270,16 @@ std::vector<BadProject> bad_projects() {
          project_with(engines + R"([{"name": "a/b", "builtin": "impulse"}])"), "engines[0].name",
          "must be 1 to 64 letters, digits"},
         {"no engines", project_with(engines + "[]"), "engines", "must name at least one engine"},
+        {"a skip naming no scene",
+         project_with(engines + R"([{"name": "a", "builtin": "impulse", "skip": ["drop-bx"]}])"),
+         "engines[0].skip[0]",
+         "names no scene of the project: \"drop-bx\" matches no file of \"scenes\""},
+        {"a skip as text",
+         project_with(engines + R"([{"name": "a", "builtin": "impulse", "skip": "drop-box"}])"),
+         "engines[0].skip", "must be an array"},
+        {"a skip repeated", project_with(engines + R"([{"name": "a", "builtin": "impulse",
+                                                       "skip": ["drop-box", "drop-box"]}])"),
+         "engines[0].skip[1]", "repeats the scene name \"drop-box\""},
         {"box2d as text", project_with(R"("scenes": ["scenes"], "box2d": "yes")"), "box2d",
          "must be true or false, got \"yes\""},
         {"an empty regen", project_with(R"("scenes": ["scenes"], "regen": "")"), "regen",
@@ -351,6 +361,25 @@ TEST_CASE("An engine that refuses a scene makes a SKIPPED row and check still pa
     CHECK(has(failed.out, "ERROR  refuser/drop-box"));
     CHECK(has(failed.out, "refuser"));
     CHECK(has(failed.out, "segfault in narrow phase"));
+}
+
+TEST_CASE("An engine's skip leaves a scene out for it alone: SKIPPED, no golden, check passes",
+          "[project]") {
+    ProjectDir p(project_with(R"("scenes": ["scenes"],
+                                 "engines": [{"name": "all", "builtin": "impulse"},
+                                             {"name": "some", "builtin": "impulse",
+                                              "skip": ["glancing"]}])"),
+                 {{"scenes", "drop-box"}, {"scenes", "glancing"}});
+    const Outcome blessed = run_tool_in(p.dir, {"bless"});
+    require_exit(blessed, 0);
+    CHECK(fs::is_regular_file(p.dir / "goldens" / "all" / "glancing.json"));
+    CHECK(fs::is_regular_file(p.dir / "goldens" / "some" / "drop-box.json"));
+    CHECK_FALSE(fs::exists(p.dir / "goldens" / "some" / "glancing.json"));
+    const Outcome checked = run_tool_in(p.dir, {"check"});
+    require_exit(checked, 0);
+    CHECK(has(checked.out, "SKIPPED some/glancing  unsupported by some: listed in its \"skip\" "
+                           "at impulse.json: engines[1]"));
+    CHECK(has(checked.out, "4 scenes: 3 passed, 0 failed, 0 errors, 1 skipped"));
 }
 
 TEST_CASE("run and render take the project's first engine or --engine NAME", "[project]") {

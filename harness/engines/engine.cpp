@@ -21,6 +21,7 @@
 #include "chipmunk_simulator.h"
 #endif
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
@@ -268,6 +269,11 @@ EngineSpec chipmunk_engine() {
 EngineRun run_engine(const EngineSpec& engine, const Scene& scene, const Overrides& overrides) {
     const auto start = std::chrono::steady_clock::now();
     EngineRun result;
+    if (std::find(engine.skip.begin(), engine.skip.end(), scene.name) != engine.skip.end()) {
+        result.outcome = EngineRun::Outcome::unsupported;
+        result.message = "listed in its \"skip\" at " + engine.origin;
+        return result;
+    }
     switch (engine.kind) {
     case EngineSpec::Kind::impulse:
         result.trajectory = run_scene(scene, overrides);

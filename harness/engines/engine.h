@@ -32,6 +32,9 @@ struct EngineSpec {
     double time_limit = 60.0;
     // Where the engine was declared ("impulse.json: engines[1]"), for messages.
     std::string origin;
+    // Scenes (by name) this engine is not asked to run: each is unsupported
+    // by it, as if it had exited 3 (docs/project-file.md, "skip").
+    std::vector<std::string> skip;
 };
 
 // An engine's own measure of its work (the trajectory's "cost" block).

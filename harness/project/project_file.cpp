@@ -92,12 +92,33 @@ std::string read_goldens(const Node& node, const std::vector<std::string>& scene
     return goldens;
 }
 
+// An engine's "skip": the names of scenes it is not asked to run (a
+// scene it cannot model, in a project whose other engines run it).
+std::vector<std::string> read_skip(const Node& engine) {
+    std::vector<std::string> names;
+    const auto list = scene_reading::optional_member(engine, "skip");
+    if (!list) {
+        return names;
+    }
+    scene_reading::require_array(*list);
+    for (std::size_t i = 0; i < list->json().size(); ++i) {
+        const Node element = list->element(i);
+        std::string name = scene_reading::read_name(element);
+        if (std::find(names.begin(), names.end(), name) != names.end()) {
+            element.fail("repeats the scene name \"" + name + "\"");
+        }
+        names.push_back(std::move(name));
+    }
+    return names;
+}
+
 EngineSpec read_engine(const Node& node, const std::string& root, const std::string& file) {
     scene_reading::require_object(node);
-    scene_reading::reject_unknown_keys(node, {"name", "builtin", "command", "time_limit"});
+    scene_reading::reject_unknown_keys(node, {"name", "builtin", "command", "time_limit", "skip"});
     EngineSpec engine;
     engine.name = scene_reading::read_name(scene_reading::required_member(node, "name"));
     engine.origin = printable_path(file) + ": " + node.path();
+    engine.skip = read_skip(node);
     const bool builtin = node.has("builtin"), command = node.has("command");
     if (builtin == command) {
         node.fail("must have exactly one of \"builtin\" (\"impulse\", \"box2d\" or "
@@ -194,6 +215,27 @@ Project read_project(const Node& top, const std::string& file, const std::string
     return project;
 }
 
+// A "skip" entry must name a scene of the project: a misspelt one would
+// skip nothing, silently.
+void refuse_unknown_skips(const Project& project, const std::vector<std::string>& scene_files) {
+    std::vector<std::string> names;
+    for (const std::string& path : scene_files) {
+        names.push_back(fs::path(path).stem().string());
+    }
+    for (std::size_t e = 0; e < project.engines.size(); ++e) {
+        const std::vector<std::string>& skip = project.engines[e].skip;
+        for (std::size_t k = 0; k < skip.size(); ++k) {
+            if (std::find(names.begin(), names.end(), skip[k]) == names.end()) {
+                throw InputError(project.file,
+                                 "engines[" + std::to_string(e) + "].skip[" + std::to_string(k) +
+                                     "]",
+                                 "names no scene of the project: \"" + skip[k] +
+                                     "\" matches no file of \"scenes\"");
+            }
+        }
+    }
+}
+
 } // namespace
 
 Project parse_project(const std::string& text, const std::string& file, const std::string& root) {
@@ -212,7 +254,7 @@ Project load_project(const std::string& file) {
                       file, root.empty() ? "." : root);
     // Every verb, even one that names its scene by path, refuses a project
     // whose scenes entry matches nothing: the mistake is said where it is made.
-    project_scenes(project);
+    refuse_unknown_skips(project, project_scenes(project));
     return project;
 }
 
