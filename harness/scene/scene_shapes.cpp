@@ -100,6 +100,44 @@ void require_simple(const Node& node, const std::vector<Vec2>& v) {
     }
 }
 
+// The polygon's least width: over its edges, the furthest vertex from the
+// edge's line (a convex polygon's narrowest strip lies flush with an edge).
+double least_width(const Polygon& polygon) {
+    double least = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < polygon.count; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        double furthest = 0.0;
+        for (int j = 0; j < polygon.count; ++j) {
+            const Vec2 v = polygon.vertices[static_cast<std::size_t>(j)];
+            furthest = std::max(furthest, dot(polygon.normals[k], polygon.vertices[k] - v));
+        }
+        least = std::min(least, furthest);
+    }
+    return least;
+}
+
+// A polygon thinner than the rounding of its own vertices has no thickness
+// to double precision: its least width below 2^-40 of its longest extent
+// (the triangle [[-0.1, 0], [0.1, 0], [0, 1e-15]], 5e-15 of its length, once
+// had an inradius of -0 m). The engine's contact tests need its normals and
+// its inradius to mean something; a sliver of 1e-9 of its length is fine.
+void require_thickness(const Node& node, const Polygon& polygon) {
+    double extent = 0.0;
+    for (int i = 0; i < polygon.count; ++i) {
+        for (int j = i + 1; j < polygon.count; ++j) {
+            extent = std::max(extent, length(polygon.vertices[static_cast<std::size_t>(i)] -
+                                             polygon.vertices[static_cast<std::size_t>(j)]));
+        }
+    }
+    const double width = least_width(polygon);
+    if (!(width > std::ldexp(extent, -40))) {
+        node.fail("is " + number_text(width) + " m across at its thinnest and " +
+                  number_text(extent) +
+                  " m long: no thickness to double precision (its width must be more than "
+                  "2^-40 of its length); make the shape thicker");
+    }
+}
+
 Shape read_polygon(const Node& node) {
     require_array(node);
     const std::size_t n = node.json().size();
@@ -147,28 +185,10 @@ Shape read_shape(const Node& node) {
     if (*kind == "circle") {
         return make_circle(read_positive(value));
     }
-    return read_polygon(value);
+    const Shape polygon = read_polygon(value);
+    require_thickness(node, polygon.polygon);
+    return polygon;
 }
-
-namespace {
-
-// The polygon's least width: over its edges, the furthest vertex from the
-// edge's line (a convex polygon's narrowest strip lies flush with an edge).
-double least_width(const Polygon& polygon) {
-    double least = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < polygon.count; ++i) {
-        const auto k = static_cast<std::size_t>(i);
-        double furthest = 0.0;
-        for (int j = 0; j < polygon.count; ++j) {
-            const Vec2 v = polygon.vertices[static_cast<std::size_t>(j)];
-            furthest = std::max(furthest, dot(polygon.normals[k], polygon.vertices[k] - v));
-        }
-        least = std::min(least, furthest);
-    }
-    return least;
-}
-
-} // namespace
 
 // Moves a polygon's vertices by minus its centroid; returns the centroid when
 // it was off the origin by more than centroid_tolerance of its size, or more
