@@ -292,6 +292,36 @@ double deepest(World& world, const Configuration& from, double span, int n) {
     return lowest;
 }
 
+struct SweptRun {
+    std::vector<CollisionEvent> events;
+    std::optional<StepError> error;
+};
+
+// Steps `world` `steps` times by h with ccd, checking each step's free
+// stretches (from its start to its first collision, and from its last
+// collision to its end) at n + 1 instants: never deeper than the contact
+// tolerance. Stops at the first error.
+SweptRun run_checking_free_stretches(World& world, double h, int steps, int n) {
+    const double tolerance = world.solver.contact_tolerance;
+    SweptRun run;
+    for (int k = 0; k < steps; ++k) {
+        const Configuration start = configuration_of(world);
+        const std::size_t before = run.events.size();
+        run.error = step(world, k * h, h, run.events);
+        if (run.error) {
+            break;
+        }
+        const double t0 = k * h;
+        const bool hit = run.events.size() > before;
+        const double first = hit ? run.events[before].time - t0 : h;
+        const double last = hit ? run.events.back().time - t0 : h;
+        INFO("step " << k);
+        CHECK(deepest(world, start, first, n) >= -tolerance * (1.0 + 1e-6));
+        CHECK(deepest(world, configuration_of(world), last - h, n) >= -tolerance * (1.0 + 1e-6));
+    }
+    return run;
+}
+
 } // namespace
 
 TEST_CASE("a rod spinning 10 rad per step never passes into a wall unseen", "[unit][ccd]") {
@@ -314,25 +344,7 @@ TEST_CASE("a rod spinning 10 rad per step never passes into a wall unseen", "[un
         CHECK(lowest < -0.01);
     }
     World world = rod_world(true);
-    const double tolerance = world.solver.contact_tolerance;
-    std::vector<CollisionEvent> events;
-    std::optional<StepError> error;
-    for (int k = 0; k < steps && !error; ++k) {
-        const Configuration start = configuration_of(world);
-        const std::size_t before = events.size();
-        error = step(world, k * dt, dt, events);
-        if (error) {
-            break;
-        }
-        // Free stretches: from the step's start to its first collision, and
-        // from its last collision to its end.
-        const double t0 = k * dt;
-        const double first = events.size() > before ? events[before].time - t0 : dt;
-        const double last = events.size() > before ? events.back().time - t0 : dt;
-        INFO("step " << k);
-        CHECK(deepest(world, start, first, n) >= -tolerance * (1.0 + 1e-6));
-        CHECK(deepest(world, configuration_of(world), last - dt, n) >= -tolerance * (1.0 + 1e-6));
-    }
+    const auto [events, error] = run_checking_free_stretches(world, dt, steps, n);
     if (error) {
         // The one way the sweep may give up, naming the rod and the wall.
         CHECK(error->failure == StepFailure::sweep_not_converged);
@@ -400,25 +412,8 @@ TEST_CASE("a box spinning along a wall is swept point by point, at the exact tou
         INFO("dt " << h);
         World world = grazing_world();
         const double energy = kinetic_energy(world);
-        const double tolerance = world.solver.contact_tolerance;
-        std::vector<CollisionEvent> events;
-        std::optional<StepError> error;
         const int steps = static_cast<int>(std::ceil(0.1 / h));
-        for (int k = 0; k < steps && !error; ++k) {
-            const Configuration start = configuration_of(world);
-            const std::size_t before = events.size();
-            error = step(world, k * h, h, events);
-            if (error) {
-                break;
-            }
-            const double t0 = k * h;
-            const double first = events.size() > before ? events[before].time - t0 : h;
-            const double last = events.size() > before ? events.back().time - t0 : h;
-            INFO("step " << k);
-            CHECK(deepest(world, start, first, 400) >= -tolerance * (1.0 + 1e-6));
-            CHECK(deepest(world, configuration_of(world), last - h, 400) >=
-                  -tolerance * (1.0 + 1e-6));
-        }
+        const auto [events, error] = run_checking_free_stretches(world, h, steps, 400);
         REQUIRE_FALSE(error);
         REQUIRE(events.size() == 2);
         CHECK(std::fabs(events[0].time - exact) <=
