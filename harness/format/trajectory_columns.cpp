@@ -1,6 +1,7 @@
 #include "trajectory_columns.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace impulse::harness {
@@ -36,6 +37,17 @@ double value_at(const std::vector<double>& frame, std::size_t column) {
 
 double frame_time(const std::vector<double>& frame) {
     return value_at(frame, 0);
+}
+
+double event_time_slack(const Trajectory& trajectory) {
+    const auto t = std::find(trajectory.columns.begin(), trajectory.columns.end(), "t");
+    if (t == trajectory.columns.end() || trajectory.frames.size() < 2) {
+        return 0.0;
+    }
+    const auto column = static_cast<std::size_t>(t - trajectory.columns.begin());
+    const double step =
+        value_at(trajectory.frames[1], column) - value_at(trajectory.frames[0], column);
+    return std::isfinite(step) && step > 0.0 ? 1e-9 * step : 0.0;
 }
 
 bool involves(const TrajectoryEvent& event, const std::string& body) {

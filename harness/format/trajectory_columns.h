@@ -31,6 +31,13 @@ std::optional<BodyColumns> body_columns(const Trajectory& trajectory, const std:
 double value_at(const std::vector<double>& frame, std::size_t column);
 double frame_time(const std::vector<double>& frame);
 
+// How far an event's time may be from a frame's and still be that frame's
+// collision: 1e-9 of the step between the first two frames (0 with fewer, or
+// without a t column). An engine stamps a collision with its step's end,
+// t0 + dt, which may differ from the frame's k dt in the last bits (Box2D
+// does); the observables and the first divergence both read it this way.
+double event_time_slack(const Trajectory& trajectory);
+
 bool involves(const TrajectoryEvent& event, const std::string& body);
 // The indices of the events that involve `body`, in order.
 std::vector<std::size_t> events_of(const Trajectory& trajectory, const std::string& body);

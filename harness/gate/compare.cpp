@@ -5,6 +5,7 @@
 
 #include "number_format.h"
 #include "scaled_difference.h"
+#include "trajectory_columns.h"
 
 #include <algorithm>
 #include <charconv>
@@ -492,11 +493,7 @@ Comparison compare(const Trajectory& gold, const Trajectory& value,
     result.structural = structural_differences(gold, value);
     compare_frames(gold, value, tolerances, result);
     compare_events(gold, value, tolerances, result);
-    const std::optional<std::size_t> gold_t = index_of(gold.columns, "t");
-    if (gold_t && gold.frames.size() >= 2 && *gold_t < gold.frames[0].size() &&
-        *gold_t < gold.frames[1].size()) {
-        result.frame_step = gold.frames[1][*gold_t] - gold.frames[0][*gold_t];
-    }
+    result.event_time_slack = event_time_slack(gold);
 
     bool values_pass = true;
     for (const ChannelSummary& summary : result.channels) {

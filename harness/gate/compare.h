@@ -45,10 +45,9 @@ struct Comparison {
     // then the first divergent field of the first divergent event.
     std::vector<Divergence> first_divergences;
     std::array<ChannelSummary, channel_count> channels{};
-    // The golden's step between its first two frames (0 with fewer or
-    // without a t column): first_divergence.h lets an event's time differ
-    // from a frame's by 1e-9 of it and still count as the frame's.
-    double frame_step = 0.0;
+    // How far an event's golden time may be from a frame's and still be
+    // that frame's collision (trajectory_columns.h), for first_divergence.h.
+    double event_time_slack = 0.0;
 };
 
 // exact when tolerances is empty.

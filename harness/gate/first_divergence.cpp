@@ -88,14 +88,11 @@ bool is_event_divergence(const Divergence& divergence) {
 }
 
 const Divergence* earliest_divergence(const Comparison& comparison) {
-    // An event stamped with its step's end, t0 + dt, may differ from the
-    // frame's k dt in the last bits; within 1e-9 of a step it is the frame's
-    // collision, as observables.cpp reads it (an engine that stamped t0 + dt
-    // was told a frame's angle differed "before any collision differs" by
-    // 1 ULP of time).
-    const double slack = std::isfinite(comparison.frame_step) && comparison.frame_step > 0.0
-                             ? 1e-9 * comparison.frame_step
-                             : 0.0;
+    // An event stamped with its step's end, t0 + dt, is the frame's
+    // collision though its time is a few ULP past k dt (an engine that
+    // stamped so was told a frame's angle differed "before any collision
+    // differs" by 1 ULP of time).
+    const double slack = comparison.event_time_slack;
     const Divergence* best = nullptr;
     for (const Divergence& d : comparison.first_divergences) {
         if (best == nullptr) {

@@ -55,8 +55,7 @@ std::vector<double> impacts_of(const Trajectory& trajectory, const std::string& 
 // impact n left (plus free flight since). Empty otherwise. An event at time t
 // is resolved by the frame at t (the impulse engine resolves it inside the
 // step; Box2D stamps it with the end of the step that solved it, t0 + dt,
-// which may differ from the frame's (k + 1) dt in the last bit, hence the
-// slack of 1e-9 of a step). The frame at t = 0 comes before every step, so it
+// hence event_time_slack). The frame at t = 0 comes before every step, so it
 // never shows an impact done.
 const std::vector<double>* frame_after(const Trajectory& trajectory,
                                        const std::vector<double>& impacts, std::size_t n,
@@ -65,7 +64,7 @@ const std::vector<double>* frame_after(const Trajectory& trajectory,
     if (frames.size() < 2) {
         return nullptr;
     }
-    const double slack = 1e-9 * (frame_time(frames[1]) - frame_time(frames[0]));
+    const double slack = event_time_slack(trajectory);
     const double t = std::max(impacts[n], not_before) - slack;
     const auto frame =
         std::find_if(frames.begin() + 1, frames.end(),
