@@ -2,8 +2,10 @@
 
 #include "integrator.h"
 #include "narrow_phase_query.h"
+#include "shape.h"
 
 #include <array>
+#include <cmath>
 #include <limits>
 
 namespace impulse {
@@ -140,16 +142,22 @@ double support(const Shape& shape, const Transform& xf, Vec2 d) {
 // is the largest such gap over all directions, so any n's gap bounds it from
 // below, and bounds separation() from below where that is negative (then it
 // is minus the depth, the signed distance).
+// When n is a face normal, which body's face (Face::a, Face::b) and which
+// face: that axis turns with its body, and the bound below can follow it.
+enum class Face { none, a, b };
+
 struct Axis {
     Vec2 normal;
     double gap = -never;
+    Face owner = Face::none;
+    int face = -1;
 };
 
 void consider(Axis& best, Vec2 n, const Shape& a, const Transform& xa, const Shape& b,
-              const Transform& xb) {
+              const Transform& xb, Face owner = Face::none, int face = -1) {
     const double gap = -support(a, xa, -n) - support(b, xb, n);
     if (gap > best.gap) {
-        best = {n, gap};
+        best = {n, gap, owner, face};
     }
 }
 
@@ -161,12 +169,12 @@ Axis separating_axis(const Shape& a, const Transform& xa, const Shape& b, const 
     Axis best;
     if (a.type == ShapeType::polygon) {
         for (int i = 0; i < a.polygon.count; ++i) {
-            consider(best, -rotate(xa.q, a.polygon.normals[i]), a, xa, b, xb);
+            consider(best, -rotate(xa.q, a.polygon.normals[i]), a, xa, b, xb, Face::a, i);
         }
     }
     if (b.type == ShapeType::polygon) {
         for (int i = 0; i < b.polygon.count; ++i) {
-            consider(best, rotate(xb.q, b.polygon.normals[i]), a, xa, b, xb);
+            consider(best, rotate(xb.q, b.polygon.normals[i]), a, xa, b, xb, Face::b, i);
         }
     }
     const auto towards = [](Vec2 from, Vec2 to) {
@@ -262,13 +270,103 @@ double vertex_advance(const World& world, const Pair& pair, const PairMotion& m,
     return shortest;
 }
 
+// A fourth bound along a face normal n of a turning body F, taken in F's frame
+// (docs/physics.md, "Tunnelling"): the gap is the least over the other body's
+// points q_j of d_j = n(t) . (q_j - x_F) - s_F, s_F the face's offset, and
+// each d_j is, over the next d seconds, at least d_j + d_j' d - (M_j / 2) d^2.
+// d_j' is q_j's approach to the face (its speed relative to F's material
+// point there), and M_j bounds d_j'' = n'' . r + 2 n' . r' + n . r'' with
+// r = q_j - x_F, n' = omega_F perp(n) and |r'| bounded over the step. Along
+// a world-fixed n the face's far end approaches at R |omega_F| although it is
+// beside the point, not over it: a slowly turning plank meeting a post's
+// corner was sampled every (corner's speed / R omega) of the gap and stalled
+// at every dt; in the plank's frame the corner is charged its own speed.
+double frame_advance(const World& world, const Pair& pair, const PairMotion& m, double u,
+                     double floor, const Transform& xa, const Transform& xb, const Axis& axis,
+                     double end) {
+    const bool face_of_a = axis.owner == Face::a;
+    const Shape& face_shape =
+        world.bodies[static_cast<std::size_t>(face_of_a ? pair.a : pair.b)].shape;
+    const Shape& other = world.bodies[static_cast<std::size_t>(face_of_a ? pair.b : pair.a)].shape;
+    const Transform& xf = face_of_a ? xa : xb;
+    const Transform& xo = face_of_a ? xb : xa;
+    const std::size_t face = static_cast<std::size_t>(axis.face);
+    const Vec2 n = rotate(xf.q, face_shape.polygon.normals[face]); // outward from F
+    const double offset = dot(face_shape.polygon.normals[face], face_shape.polygon.vertices[face]);
+    // The other's centre relative to F's: w and a_rel are a's relative to b's.
+    const double sign = face_of_a ? -1.0 : 1.0;
+    const Vec2 w = sign * (m.w0 + (m.c * u) * m.a_rel);
+    const double accel = m.c * length(m.a_rel);
+    const double left = end - u;
+    const double radius_f = face_of_a ? m.radius_a : m.radius_b;
+    const double radius_o = face_of_a ? m.radius_b : m.radius_a;
+    const double alpha_f = m.c * std::fabs(face_of_a ? m.alpha_a : m.alpha_b);
+    const double alpha_o = m.c * std::fabs(face_of_a ? m.alpha_b : m.alpha_a);
+    const auto rate_at_u = [&](double omega0, double alpha0, double radius) {
+        return radius > 0.0 ? omega0 + m.c * u * alpha0 : 0.0;
+    };
+    const double omega_f = face_of_a ? rate_at_u(m.omega_a, m.alpha_a, m.radius_a)
+                                     : rate_at_u(m.omega_b, m.alpha_b, m.radius_b);
+    const double omega_o = face_of_a ? rate_at_u(m.omega_b, m.alpha_b, m.radius_b)
+                                     : rate_at_u(m.omega_a, m.alpha_a, m.radius_a);
+    const double fastest_f = radius_f > 0.0 ? std::fabs(omega_f) + alpha_f * left : 0.0;
+    const double fastest_o = radius_o > 0.0 ? std::fabs(omega_o) + alpha_o * left : 0.0;
+    // |r'| over the rest of the step, and the other's own turning in n . r''.
+    const double speed = length(w) + accel * left + fastest_o * radius_o;
+    const double own_turning = accel + radius_o * (fastest_o * fastest_o + alpha_o);
+    const bool circle = other.type == ShapeType::circle;
+    const int count = circle ? 1 : other.polygon.count;
+    const double tolerance = world.solver.contact_tolerance;
+    double shortest = never;
+    for (int j = 0; j < count; ++j) {
+        const Vec2 arm =
+            circle ? Vec2{} : rotate(xo.q, other.polygon.vertices[static_cast<std::size_t>(j)]);
+        const Vec2 r = xo.p + arm - xf.p;
+        const double gap = dot(n, r) - offset - (circle ? other.radius : 0.0);
+        const double margin = gap - floor + tolerance;
+        if (!(margin > 0.0)) {
+            return 0.0;
+        }
+        const double rate = omega_f * dot(perp(n), r) + dot(n, w + omega_o * perp(arm));
+        const double farthest = length(r) + speed * left;
+        const double curvature =
+            (alpha_f + fastest_f * fastest_f) * farthest + 2.0 * fastest_f * speed + own_turning;
+        const double reach = first_reach(0.5 * curvature, -rate, margin);
+        shortest = reach < shortest ? reach : shortest;
+    }
+    return shortest;
+}
+
+// A fifth, for a turning body near what it cannot reach at any angle: each
+// turning body stands in for the disc it sweeps (its circumradius about its
+// centre), whose gap along a fixed axis moves only with the centres. However
+// fast it spins, a rod whose disc clears a wall is sampled once per step (the
+// bounds above charge R |omega| d of turning, which passes any clearance once
+// the rod turns far enough within a step).
+double disc_advance(const World& world, const Pair& pair, const PairMotion& m, double u,
+                    double floor, const Transform& xa, const Transform& xb) {
+    const Shape& a = world.bodies[static_cast<std::size_t>(pair.a)].shape;
+    const Shape& b = world.bodies[static_cast<std::size_t>(pair.b)].shape;
+    const Shape disc_a = make_circle(circumradius(a));
+    const Shape disc_b = make_circle(circumradius(b));
+    const Axis axis =
+        separating_axis(m.radius_a > 0.0 ? disc_a : a, xa, m.radius_b > 0.0 ? disc_b : b, xb);
+    const double margin = axis.gap - floor + world.solver.contact_tolerance;
+    if (!(margin > 0.0)) {
+        return 0.0;
+    }
+    const Vec2 w = m.w0 + (m.c * u) * m.a_rel;
+    return first_reach(-0.5 * m.c * dot(axis.normal, m.a_rel), -dot(axis.normal, w), margin);
+}
+
 // How long after a free sample at u (separation s) the pair certainly stays
 // above the test's floor less contact_tolerance (conservative advancement).
 // Over the next d seconds a's centre moves relative to b's by exactly
 //   D(d) = w(u) d + (c / 2) a_rel d^2,
 // and each body's surface by at most R (|omega(u)| d + (c / 2) |alpha| d^2)
-// more by turning (a chord is shorter than its arc). Two bounds, the longer
-// wins, both sound:
+// more by turning (a chord is shorter than its arc). Two bounds for every
+// pair, and three more for a turning one (vertex_advance, frame_advance,
+// disc_advance above), the longest wins, each sound:
 // - Any direction: the signed distance changes by at most the largest
 //   displacement of a point, |D(d)| plus the turning, and s bounds it from
 //   below while the pair is apart and equals it once they interpenetrate.
@@ -306,12 +404,27 @@ double safe_advance(const World& world, const Pair& pair, const PairMotion& m, d
     }
     const double along_axis = first_reach(-half_c * dot(axis.normal, m.a_rel) + turn_growth,
                                           turn_rate - dot(axis.normal, w), axis_margin);
-    const double longer = along_axis > any_direction ? along_axis : any_direction;
-    if (u + longer >= end || turn_rate == 0.0) {
-        return longer; // without turning, the point bound is the axis bound
+    double longest = along_axis > any_direction ? along_axis : any_direction;
+    if (turn_rate == 0.0 && turn_growth == 0.0) {
+        return longest; // without turning, the point bound is the axis bound
     }
-    const double by_points = vertex_advance(world, pair, m, u, floor, at_a, at_b, axis.normal, end);
-    return by_points > longer ? by_points : longer;
+    const auto reaches_end = [&](double advance) {
+        longest = advance > longest ? advance : longest;
+        return u + longest >= end;
+    };
+    if (reaches_end(longest) ||
+        reaches_end(vertex_advance(world, pair, m, u, floor, at_a, at_b, axis.normal, end))) {
+        return longest;
+    }
+    const Transform xa = transform_of(at_a);
+    const Transform xb = transform_of(at_b);
+    const bool face_turns =
+        (axis.owner == Face::a && m.radius_a > 0.0) || (axis.owner == Face::b && m.radius_b > 0.0);
+    if (face_turns && reaches_end(frame_advance(world, pair, m, u, floor, xa, xb, axis, end))) {
+        return longest;
+    }
+    reaches_end(disc_advance(world, pair, m, u, floor, xa, xb));
+    return longest;
 }
 
 // ---------------------------------------------------------------- the sweep

@@ -4,8 +4,9 @@
 // step is swept by conservative advancement: from a free sample, step forward
 // by as long as the pair's gap, padded by the contact tolerance, cannot be
 // closed (at the fastest its points can move, along the axis that separates
-// it, or along that axis vertex by vertex, whichever allows longest); each
-// sample is where the seed's test is made.
+// it, along that axis vertex by vertex, in the frame of a turning face, or
+// between the discs that hold turning bodies at every angle, whichever allows
+// longest); each sample is where the seed's test is made.
 #pragma once
 
 #include "configuration.h"

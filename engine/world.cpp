@@ -152,10 +152,14 @@ bool starts_in_time_stepping(const World& world) {
 
 // The failures that say the events model cannot carry the scene on, where
 // time-stepping can: a contact at rest, a Zeno cascade, a contact problem with
-// no solution.
+// no solution, or ccd's sweep unable to bound a pair's motion (a body
+// pivoting on a resting corner, charged its angular acceleration at every
+// point; time-stepping's candidate points cover the step's whole motion
+// without sampling it).
 bool time_stepping_carries_on(StepFailure failure) {
     return failure == StepFailure::resting_contact || failure == StepFailure::too_many_collisions ||
-           failure == StepFailure::contact_problem_unsolved;
+           failure == StepFailure::contact_problem_unsolved ||
+           failure == StepFailure::sweep_not_converged;
 }
 
 std::optional<StepError> step_by_time_stepping(World& world, double t0, double dt,

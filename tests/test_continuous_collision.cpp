@@ -9,6 +9,7 @@
 #include "manifold.h"
 #include "narrow_phase_query.h"
 #include "support.h"
+#include "swept_run.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -18,7 +19,9 @@
 
 using namespace impulse;
 using impulse::test::close_relative;
+using impulse::test::deepest;
 using impulse::test::dynamic_body;
+using impulse::test::run_checking_free_stretches;
 using impulse::test::static_body;
 using impulse::test::uniform;
 
@@ -275,51 +278,6 @@ World rod_world(bool ccd, int max_search_iterations = SolverSettings{}.max_searc
         {static_body(make_box(0.01, 5.0), {0, 0}),
          dynamic_body(make_box(1.0, 0.01), 1.0, {-0.91, 0}, 1.5707963267948966, {}, 300.0)},
         {0, 0}, 1.0, solver);
-}
-
-// The deepest interpenetration of pair 0 along the free motion from `from`
-// over u in [0, span] (span < 0: backward, from the end of a step), at n + 1
-// evenly spaced instants. Zero gravity: every integrator moves uniformly, so
-// integrating backward retraces the motion.
-double deepest(World& world, const Configuration& from, double span, int n) {
-    double lowest = 0.0;
-    Configuration at;
-    for (int k = 0; k <= n; ++k) {
-        advance_all(world, from, span * k / n, at);
-        const double s = pair_separation(world, at, world.pairs[0]);
-        lowest = s < lowest ? s : lowest;
-    }
-    return lowest;
-}
-
-struct SweptRun {
-    std::vector<CollisionEvent> events;
-    std::optional<StepError> error;
-};
-
-// Steps `world` `steps` times by h with ccd, checking each step's free
-// stretches (from its start to its first collision, and from its last
-// collision to its end) at n + 1 instants: never deeper than the contact
-// tolerance. Stops at the first error.
-SweptRun run_checking_free_stretches(World& world, double h, int steps, int n) {
-    const double tolerance = world.solver.contact_tolerance;
-    SweptRun run;
-    for (int k = 0; k < steps; ++k) {
-        const Configuration start = configuration_of(world);
-        const std::size_t before = run.events.size();
-        run.error = step(world, k * h, h, run.events);
-        if (run.error) {
-            break;
-        }
-        const double t0 = k * h;
-        const bool hit = run.events.size() > before;
-        const double first = hit ? run.events[before].time - t0 : h;
-        const double last = hit ? run.events.back().time - t0 : h;
-        INFO("step " << k);
-        CHECK(deepest(world, start, first, n) >= -tolerance * (1.0 + 1e-6));
-        CHECK(deepest(world, configuration_of(world), last - h, n) >= -tolerance * (1.0 + 1e-6));
-    }
-    return run;
 }
 
 } // namespace

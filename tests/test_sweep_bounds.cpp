@@ -1,0 +1,182 @@
+// The sweep's bounds on turning bodies (docs/engine.md, "Tunnelling"): a
+// slowly turning face meeting a corner is charged the corner's own approach
+// (the bound in the face's frame), a spinner whose bounding disc clears a wall
+// is never charged its spin (the disc bound), and a body pivoting on a corner
+// under resting contact, which the sweep cannot bound in few samples, is
+// carried on by time-stepping under "auto". Each ran into "more than
+// max_search_iterations advancement steps" before.
+#include "configuration.h"
+#include "integrator.h"
+#include "narrow_phase_query.h"
+#include "support.h"
+#include "swept_run.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <vector>
+
+using namespace impulse;
+using impulse::test::dynamic_body;
+using impulse::test::run_checking_free_stretches;
+using impulse::test::static_body;
+
+namespace {
+
+SolverSettings with_ccd() {
+    SolverSettings s;
+    s.ccd = true;
+    s.integrator = Integrator::verlet;
+    return s;
+}
+
+// A post 1 m tall and 0.02 m thick (half extents [0.01, 0.5]) tilted 0.3 rad,
+// static, body 0; a plank 0.8 x 0.06 m, body 1, level, its centre 1 mm above
+// the post's higher top corner plus its half thickness, coming down at
+// 0.01 m/s while it turns clockwise at 1 rad/s (its ends at 0.4 m/s), zero
+// gravity, e = 0.5.
+constexpr double post_angle = 0.3;
+constexpr double plank_half_thickness = 0.03;
+constexpr double plank_speed = 0.01;
+constexpr double plank_spin = -1.0;
+
+Vec2 post_corner(double side) {
+    return rotate(rotation_of(post_angle), Vec2{side * 0.01, 0.5});
+}
+
+Vec2 plank_start() {
+    const Vec2 high =
+        post_corner(-1.0).y > post_corner(1.0).y ? post_corner(-1.0) : post_corner(1.0);
+    return high + Vec2{0.0, plank_half_thickness + 1e-3};
+}
+
+World plank_world() {
+    return make_world({static_body(make_box(0.01, 0.5), {0, 0}, post_angle),
+                       dynamic_body(make_box(0.4, plank_half_thickness), 1.0, plank_start(), 0.0,
+                                    {0.0, -plank_speed}, plank_spin)},
+                      {0, 0}, 0.5, with_ccd());
+}
+
+// The first time a top corner of the post reaches the plank's bottom face,
+// from the plank's free motion in closed form: the face's outward normal at
+// angle theta is (sin theta, -cos theta), and a corner P is below the face by
+// n . (P - x(t)) - half thickness. The corner must meet the face within its
+// length (checked).
+double first_face_touch() {
+    const auto gap = [](Vec2 corner, double t) {
+        const double theta = plank_spin * t;
+        const Vec2 centre = plank_start() + Vec2{0.0, -plank_speed * t};
+        const Vec2 n{std::sin(theta), -std::cos(theta)};
+        return dot(n, corner - centre) - plank_half_thickness;
+    };
+    for (int k = 1; k < 1000000; ++k) {
+        const double t = k * 1e-6;
+        for (const double side : {-1.0, 1.0}) {
+            const Vec2 corner = post_corner(side);
+            if (gap(corner, t) < 0.0) {
+                double lo = t - 1e-6;
+                double hi = t;
+                while (hi - lo > 1e-16) {
+                    const double mid = 0.5 * (lo + hi);
+                    (gap(corner, mid) < 0.0 ? hi : lo) = mid;
+                }
+                const double theta = plank_spin * lo;
+                const Vec2 along{std::cos(theta), std::sin(theta)};
+                const Vec2 centre = plank_start() + Vec2{0.0, -plank_speed * lo};
+                REQUIRE(std::fabs(dot(along, corner - centre)) < 0.4);
+                return lo;
+            }
+        }
+    }
+    return -1.0;
+}
+
+} // namespace
+
+TEST_CASE("a slowly turning face meets a corner at the corner's own speed, at every dt",
+          "[unit][ccd]") {
+    const double exact = first_face_touch();
+    REQUIRE(exact > 0.0);
+    for (const double h : {1.0 / 60.0, 1e-3, 1e-4}) {
+        INFO("dt " << h);
+        World world = plank_world();
+        const int steps = static_cast<int>(std::ceil(0.18 / h));
+        const auto [events, error] = run_checking_free_stretches(world, h, steps, 100);
+        REQUIRE_FALSE(error);
+        REQUIRE_FALSE(events.empty());
+        // Closing at the corner's speed, within the search's bracket of the touch.
+        const double v = std::fabs(events[0].vn_before);
+        CHECK(v < 0.05);
+        CHECK(std::fabs(events[0].time - exact) <=
+              world.solver.toi_tolerance + world.solver.contact_tolerance / v);
+    }
+}
+
+TEST_CASE("a rod spinning many turns per step clear of a wall is sampled at its disc",
+          "[unit][ccd]") {
+    // A rod 1 m long, 0.02 m thick, spinning at 5000 rad/s (26 turns per
+    // 1/30 s step) and drifting along a wall at 1 m/s, its centre 1e-6 m
+    // more than its circumradius from the face: it can never touch.
+    const double radius = std::hypot(0.5, 0.01);
+    const double h = 1.0 / 30.0;
+    World world = make_world({static_body(make_box(0.01, 50.0), {0, 0}),
+                              dynamic_body(make_box(0.5, 0.01), 1.0, {0.01 + radius + 1e-6, -20.0},
+                                           0.0, {0.0, 1.0}, 5000.0)},
+                             {0, 0}, 1.0, with_ccd());
+    const auto [events, error] = run_checking_free_stretches(world, h, 30, 400);
+    CHECK_FALSE(error);
+    CHECK(events.empty());
+    CHECK(world.bodies[1].state.position.y == Approx(-19.0).margin(1e-12));
+}
+
+TEST_CASE("a box pivoting on a corner under resting contact with ccd is carried on by "
+          "time-stepping",
+          "[unit][ccd]") {
+    // A 0.8 x 0.4 m box at rest on one corner, tilted 0.3 rad, on a floor:
+    // resting contact gives it an angular acceleration the sweep charges at
+    // every point, so each sample advances about 2e-5 s and the events model
+    // stops in its first step; "auto" redoes that step by time-stepping. It
+    // tips over and lies flat on its long side (e = 0.5, frictionless: its
+    // centre never moves sideways).
+    const double g = 9.81;
+    const double h = 1.0 / 60.0;
+    const double start_height = 0.4 * std::sin(0.3) + 0.2 * std::cos(0.3);
+    const auto pivot = [&](RestingMethod method) {
+        SolverSettings s = with_ccd();
+        s.resting = true;
+        s.resting_method = method;
+        return make_world({static_body(make_box(5.0, 0.5), {0.0, -0.5}),
+                           dynamic_body(make_box(0.4, 0.2), 1.0, {0.0, start_height}, 0.3)},
+                          {0.0, -g}, 0.5, s);
+    };
+    {
+        World events_only = pivot(RestingMethod::events);
+        std::vector<CollisionEvent> events;
+        const std::optional<StepError> error = step(events_only, 0.0, h, events);
+        REQUIRE(error); // the "before", and what "events" still does
+        CHECK(error->failure == StepFailure::sweep_not_converged);
+    }
+    World world = pivot(RestingMethod::automatic);
+    const double tolerance = world.solver.contact_tolerance;
+    const auto energy = [&] {
+        const BodyState& s = world.bodies[1].state;
+        const double m = 1.0 / world.bodies[1].inv_mass;
+        const double i = 1.0 / world.bodies[1].inv_inertia;
+        return m * g * s.position.y + 0.5 * m * length_squared(s.velocity) +
+               0.5 * i * s.angular_velocity * s.angular_velocity;
+    };
+    double last = energy();
+    std::vector<CollisionEvent> events;
+    for (int k = 0; k < 90; ++k) {
+        REQUIRE_FALSE(step(world, k * h, h, events));
+        CHECK(pair_separation(world, configuration_of(world), world.pairs[0]) >=
+              -tolerance * (1.0 + 1e-6));
+        const double now = energy();
+        CHECK(now <= last + 1e-12 * std::fabs(last));
+        last = now;
+    }
+    CHECK(world.work.time_stepping_from_step == 0);
+    const BodyState& s = world.bodies[1].state;
+    CHECK(std::fabs(s.position.x) < 1e-12);
+    CHECK(s.position.y == Approx(0.2).margin(2.0 * tolerance));
+    CHECK(std::fabs(std::sin(s.angle)) < 1e-6);
+}
