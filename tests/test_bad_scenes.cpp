@@ -385,8 +385,10 @@ TEST_CASE("A scene or body name that is no plain word, or would leave goldens/, 
 
 TEST_CASE("A scene argument that names no scene file is exit 2 and writes nothing",
           "[unit][bad-input]") {
-    // check and bless take a scene's name or path. An argument that is not a
-    // scene file is refused; nothing is written, in goldens/ or beside it.
+    // check, bless and run take a scene's name or path. A name that no scene
+    // has is refused before anything runs, naming the scenes folder (and the
+    // closest name); a path that is not a scene file is that file's ERROR row
+    // in check. Nothing is written, in goldens/ or beside it.
     const TempDir dir;
     const fs::path root = copy_of_gate(dir);
     fs::create_directories(dir.dir / "scene-is-a-folder.json");
@@ -400,11 +402,12 @@ TEST_CASE("A scene argument that names no scene file is exit 2 and writes nothin
         std::string words;
     };
     const std::vector<Argument> arguments = {
-        {"no-such-scene", scenes + "/no-such-scene.json", "cannot be read (no such file"},
-        {"a b", scenes + "/a b.json", "cannot be read"},
-        {"a\\b", scenes + "/a\\b.json", "cannot be read"},
-        {"..", scenes + "/...json", "cannot be read"},
-        {"", scenes + "/.json", "cannot be read"},
+        {"no-such-scene", scenes, "is named 'no-such-scene'"},
+        {"drop-bx", scenes, "is named 'drop-bx' (did you mean 'drop-box'?)"},
+        {"a b", scenes, "is named 'a b'"},
+        {"a\\b", scenes, "is named 'a\\b'"},
+        {"..", scenes, "is named '..'"},
+        {"", scenes, "is named ''"},
         {"../x", "../x", "cannot be read"},
         {"a/b", "a/b", "cannot be read"},
         {(dir.dir / "missing.json").string(), (dir.dir / "missing.json").string(),
@@ -417,18 +420,17 @@ TEST_CASE("A scene argument that names no scene file is exit 2 and writes nothin
         INFO("argument: '" << a.given << "'");
         check_refused(run_tool({"bless", a.given, "--root", r}), a.file, "", a.words);
         const Outcome checked = run_tool({"check", a.given, "--root", r});
-        CHECK(checked.exit_code == 2);
-        CHECK(checked.err.empty());
-        CHECK(checked.out.find("  ERROR  ") != std::string::npos);
-        CHECK(checked.out.find(a.file + ": ") != std::string::npos);
-        if (a.file.rfind(scenes, 0) == 0) {
+        if (a.file == scenes) {
+            check_refused(checked, a.file, "", a.words);
+            CHECK(checked.out.empty());
             // run takes a name too, resolved in the project found from the
-            // current folder: the sentence names the file it looked for.
-            const Outcome ran = run_tool({"run", a.given, "--root", r});
-            CHECK(ran.exit_code == 2);
-            CHECK(ran.out.empty());
-            CHECK(ran.err.find(a.file + ": cannot be read") != std::string::npos);
+            // current folder: the same sentence.
+            check_refused(run_tool({"run", a.given, "--root", r}), a.file, "", a.words);
         } else {
+            CHECK(checked.exit_code == 2);
+            CHECK(checked.err.empty());
+            CHECK(checked.out.find("  ERROR  ") != std::string::npos);
+            CHECK(checked.out.find(a.file + ": ") != std::string::npos);
             check_refused(run_tool({"run", a.given}), a.file, "",
                           a.words == "not valid JSON" ? a.words : "cannot be read");
         }

@@ -67,13 +67,13 @@ TEST_CASE("render takes a project scene's name, as run and check do", "[render-s
     CHECK(text.find("class=\"static\" data-body=\"ground\"") != std::string::npos);
     CHECK(text.find("data-body=\"box\"") != std::string::npos);
 
-    // A name no scene has: one sentence naming the file looked for, nothing written.
+    // A name no scene has: one sentence naming the name and the scenes, nothing written.
     const fs::path none = tmp.dir / "none.svg";
     const Outcome bad =
         run_tool({"render", "no-such-scene", "--root", source_root, "--out", none.string()});
     CHECK(bad.exit_code == 2);
     CHECK(one_line(bad.err));
-    CHECK(bad.err.find("no-such-scene.json") != std::string::npos);
+    CHECK(bad.err.find("is named 'no-such-scene'") != std::string::npos);
     CHECK_FALSE(fs::exists(none));
 }
 

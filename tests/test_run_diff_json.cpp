@@ -149,7 +149,7 @@ TEST_CASE("run --json: bad input is one sentence, exit 2, nothing written", "[ru
                                     "--json", json.string()});
         CHECK(o.exit_code == 2);
         CHECK(one_line(o.err));
-        CHECK(o.err.find("no-such-scene.json") != std::string::npos);
+        CHECK(o.err.find("named 'no-such-scene'") != std::string::npos);
         CHECK_FALSE(fs::exists(json));
         CHECK_FALSE(fs::exists(out));
     }

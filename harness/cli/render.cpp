@@ -113,7 +113,7 @@ std::string mismatch_reason(const std::string& scene_file, const std::string& tr
 // the one recorded is refused (exit 2) rather than drawn with wrong shapes.
 Scene given_scene(const Project& project, const std::string& argument, const Trajectory& trajectory,
                   const std::string& trajectory_file) {
-    Scene scene = load_scene(resolve_scene(project, argument));
+    Scene scene = load_scene(scene_argument(project, argument));
     if (scene.sha256 != trajectory.scene_sha256) {
         throw InputError("--scene", "", mismatch_reason(scene.file, trajectory_file));
     }
@@ -189,7 +189,7 @@ int render_verb(const std::vector<std::string>& args, std::ostream& out, std::os
     }
     const Project project = find_project(a.option("--root"));
     // A file, or the name of a project scene (as run and check take it).
-    const std::string input = resolve_scene(project, a.positional.front());
+    const std::string input = scene_argument(project, a.positional.front());
     const EngineSpec engine = chosen_engine(project, a);
     const std::vector<std::string> goldens = protected_folders(project);
     if (const auto path = a.option("--out")) {

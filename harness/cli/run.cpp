@@ -127,7 +127,7 @@ int run_verb(const std::vector<std::string>& args, std::ostream& out, std::ostre
     if (json_out) {
         check_json_file(*json_out, trajectory_out, goldens);
     }
-    const Scene scene = load_scene(resolve_scene(project, a.positional.front()));
+    const Scene scene = load_scene(scene_argument(project, a.positional.front()));
     for (const std::string& warning : scene.warnings) {
         err << "warning: " << warning << "\n";
     }

@@ -428,7 +428,7 @@ int sweep_verb(const std::vector<std::string>& args, std::ostream& out, std::ost
     if (svg) {
         check_output_file("--svg", *svg, protected_folders(project));
     }
-    const Scene scene = load_scene(resolve_scene(project, a.positional.front()));
+    const Scene scene = load_scene(scene_argument(project, a.positional.front()));
     for (const std::string& warning : scene.warnings) {
         err << "warning: " << warning << "\n";
     }

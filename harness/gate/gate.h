@@ -33,6 +33,10 @@ std::vector<std::string> canonical_scenes(const Project& project);
 // has a '/'; otherwise the name of a project scene (looked for in the first
 // scenes folder when no scene has that name, so the error names that file).
 std::string resolve_scene(const Project& project, const std::string& argument);
+// A scene argument as a verb takes it: resolve_scene, refusing a name that
+// no scene has with one sentence naming the scenes folder (or the project
+// file) and the closest name, instead of a file that cannot be read.
+std::string scene_argument(const Project& project, const std::string& argument);
 // The scene files a verb works on: every project scene when no argument
 // names one, otherwise each argument resolved as above. Throws InputError
 // naming both files when two names differ only in case.

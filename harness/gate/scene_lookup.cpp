@@ -3,6 +3,7 @@
 #include "gate.h"
 #include "input_error.h"
 #include "scene_names.h"
+#include "strict_json.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -108,6 +109,40 @@ std::string resolve_scene(const Project& project, const std::string& argument) {
     return (fs::path(default_scene_folder(project)) / (argument + ".json")).string();
 }
 
+std::string scene_argument(const Project& project, const std::string& argument) {
+    const std::string path = resolve_scene(project, argument);
+    std::error_code error;
+    if (path == argument || fs::exists(path, error)) {
+        return path; // a path (its own error names it), or a scene found
+    }
+    std::vector<std::string> names;
+    for (const std::string& scene : canonical_scenes(project)) {
+        names.push_back(scene_stem(scene));
+    }
+    const std::string closest = closest_known_key(argument, names);
+    const std::string where = project.is_implicit() ? default_scene_folder(project) : project.file;
+    const std::string count = std::to_string(names.size());
+    const std::string quoted = "'" + argument + "'";
+    std::string sentence;
+    if (names.empty()) {
+        sentence = (project.is_implicit() ? "holds no scene, so none is named "
+                                          : "lists no scene, so none is named ") +
+                   quoted;
+    } else if (names.size() == 1) {
+        sentence = (project.is_implicit() ? "the only scene there is not named "
+                                          : "the project's only scene is not named ") +
+                   quoted;
+    } else {
+        sentence =
+            (project.is_implicit() ? "none of the " + count + " scenes there is named "
+                                   : "none of the project's " + count + " scenes is named ") +
+            quoted;
+    }
+    throw InputError(where, "",
+                     sentence + (closest.empty() ? "" : " (did you mean '" + closest + "'?)") +
+                         "; a scene argument is a scene's name or a path to its .json file");
+}
+
 std::vector<std::string> scenes_named(const Project& project,
                                       const std::vector<std::string>& arguments) {
     if (arguments.empty()) {
@@ -115,7 +150,7 @@ std::vector<std::string> scenes_named(const Project& project,
     }
     std::vector<std::string> paths;
     for (const std::string& argument : arguments) {
-        paths.push_back(resolve_scene(project, argument));
+        paths.push_back(scene_argument(project, argument));
     }
     refuse_case_collisions(paths);
     return paths;
