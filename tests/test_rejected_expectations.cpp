@@ -86,6 +86,20 @@ TEST_CASE("rejected drop expectations", "[scene]") {
             "the drop formula needs a gap between 'ball' and the static ground at t = 0, but it "
             "touches it");
     }
+    SECTION("within the contact tolerance of the ground") {
+        // 0.5e-9 m above it, and the default tolerance is 1e-9 m: the pair
+        // counts as touching from the start and never collides.
+        require_rejected(
+            expecting(drop(R"("ball")"),
+                      R"([{"name": "ground", "static": true, "shape": {"box": [50, 0.5]},
+                           "position": [0, -0.5]},
+                          {"name": "ball", "shape": {"circle": 0.5},
+                           "position": [0, 0.5000000005]}])"),
+            "expectations[0].body",
+            "the drop formula needs a gap between 'ball' and the static ground at t = 0 wider "
+            "than solver.contact_tolerance (1e-09 m), within which the two count as touching "
+            "and never collide, but it is 5");
+    }
     SECTION("no ground") {
         require_rejected(
             expecting(drop(R"("ball")"), R"([{"name": "ball", "shape": {"circle": 0.5}}])"),

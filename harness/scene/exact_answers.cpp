@@ -61,6 +61,18 @@ std::optional<Refusal> gap_refusal(const Scene& scene, const SceneBody& body,
                                                 " and the static ground at t = 0, but it "
                                                 "touches it");
     }
+    // Within contact_tolerance the engine counts the pair as touching: it
+    // never collides, so the formula's impacts never come.
+    const double tolerance = scene.solver.contact_tolerance;
+    if (!(*gap > tolerance)) {
+        return refuse(Refusal::Where::body,
+                      formula + " needs a gap between " + single_quoted(body.name) +
+                          " and the static ground at t = 0 wider than solver.contact_tolerance (" +
+                          number_text(tolerance) +
+                          " m), within which the two count as touching "
+                          "and never collide, but it is " +
+                          number_text(*gap) + " m; raise the body or lower the tolerance");
+    }
     return std::nullopt;
 }
 
