@@ -57,4 +57,23 @@ inline SweptRun run_checking_free_stretches(World& world, double h, int steps, i
     return run;
 }
 
+// The first t in (0, limit] at which gap(t) < 0, from a scan every 1e-6 s
+// bisected to 1e-16 s (the last time before it, lo, is returned), or -1 when
+// there is none: the closed-form touch of a motion written out by hand.
+template <class Gap> double first_negative(Gap gap, double limit) {
+    constexpr double scan = 1e-6;
+    for (double k = 1.0; k * scan <= limit; k += 1.0) {
+        if (gap(k * scan) < 0.0) {
+            double lo = (k - 1.0) * scan;
+            double hi = k * scan;
+            while (hi - lo > 1e-16) {
+                const double mid = 0.5 * (lo + hi);
+                (gap(mid) < 0.0 ? hi : lo) = mid;
+            }
+            return lo;
+        }
+    }
+    return -1.0;
+}
+
 } // namespace impulse::test

@@ -11,8 +11,10 @@
 #include "support.h"
 #include "swept_run.h"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <random>
 #include <vector>
@@ -333,25 +335,16 @@ World grazing_world() {
 // motion in closed form (libm's sine and cosine, bisection to the last bit).
 double first_corner_touch() {
     const Vec2 corners[4] = {{0.07, 0.03}, {-0.07, 0.03}, {-0.07, -0.03}, {0.07, -0.03}};
-    const auto gap = [](Vec2 r, double t) {
+    const auto gap = [&](double t) {
         const double angle = -24.19266 - 21.7704 * t;
-        return -0.808921 - 0.479 * t + std::cos(angle) * r.x - std::sin(angle) * r.y + 0.9;
-    };
-    for (int k = 1; k < 100000; ++k) {
-        const double t = k * 1e-6;
+        double least = std::numeric_limits<double>::infinity();
         for (const Vec2 r : corners) {
-            if (gap(r, t) < 0.0) {
-                double lo = t - 1e-6;
-                double hi = t;
-                while (hi - lo > 1e-16) {
-                    const double mid = 0.5 * (lo + hi);
-                    (gap(r, mid) < 0.0 ? hi : lo) = mid;
-                }
-                return lo;
-            }
+            least = std::min(least, -0.808921 - 0.479 * t + std::cos(angle) * r.x -
+                                        std::sin(angle) * r.y + 0.9);
         }
-    }
-    return -1.0;
+        return least;
+    };
+    return impulse::test::first_negative(gap, 0.1);
 }
 
 double kinetic_energy(const World& world) {

@@ -11,6 +11,7 @@
 #include "support.h"
 #include "swept_run.h"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <vector>
@@ -62,32 +63,20 @@ World plank_world() {
 // n . (P - x(t)) - half thickness. The corner must meet the face within its
 // length (checked).
 double first_face_touch() {
-    const auto gap = [](Vec2 corner, double t) {
+    const auto centre = [](double t) { return plank_start() + Vec2{0.0, -plank_speed * t}; };
+    const auto below = [&](double side, double t) {
         const double theta = plank_spin * t;
-        const Vec2 centre = plank_start() + Vec2{0.0, -plank_speed * t};
         const Vec2 n{std::sin(theta), -std::cos(theta)};
-        return dot(n, corner - centre) - plank_half_thickness;
+        return dot(n, post_corner(side) - centre(t)) - plank_half_thickness;
     };
-    for (int k = 1; k < 1000000; ++k) {
-        const double t = k * 1e-6;
-        for (const double side : {-1.0, 1.0}) {
-            const Vec2 corner = post_corner(side);
-            if (gap(corner, t) < 0.0) {
-                double lo = t - 1e-6;
-                double hi = t;
-                while (hi - lo > 1e-16) {
-                    const double mid = 0.5 * (lo + hi);
-                    (gap(corner, mid) < 0.0 ? hi : lo) = mid;
-                }
-                const double theta = plank_spin * lo;
-                const Vec2 along{std::cos(theta), std::sin(theta)};
-                const Vec2 centre = plank_start() + Vec2{0.0, -plank_speed * lo};
-                REQUIRE(std::fabs(dot(along, corner - centre)) < 0.4);
-                return lo;
-            }
-        }
+    const double touch = impulse::test::first_negative(
+        [&](double t) { return std::min(below(-1.0, t), below(1.0, t)); }, 1.0);
+    for (const double side : {-1.0, 1.0}) {
+        const double theta = plank_spin * touch;
+        const Vec2 along{std::cos(theta), std::sin(theta)};
+        CHECK(std::fabs(dot(along, post_corner(side) - centre(touch))) < 0.4);
     }
-    return -1.0;
+    return touch;
 }
 
 } // namespace
