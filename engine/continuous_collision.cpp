@@ -137,19 +137,19 @@ double support(const Shape& shape, const Transform& xf, Vec2 d) {
     return best;
 }
 
+// When n is a face normal, which body's face (Face::a, Face::b) and which
+// face: that axis turns with its body, and the bound below can follow it.
+enum class Face { none, a, b };
+
 // A direction n (unit, toward a) and the pair's gap along it: the least n . p
 // over a minus the greatest n . q over b. For convex shapes the signed distance
 // is the largest such gap over all directions, so any n's gap bounds it from
 // below, and bounds separation() from below where that is negative (then it
 // is minus the depth, the signed distance).
-// When n is a face normal, which body's face (Face::a, Face::b) and which
-// face: that axis turns with its body, and the bound below can follow it.
-enum class Face { none, a, b };
-
 struct Axis {
     Vec2 normal;
     double gap = -never;
-    Face owner = Face::none;
+    Face owner = Face::none; // whose face normal n is, if any
     int face = -1;
 };
 
