@@ -311,11 +311,7 @@ class ImpulseSimulator final : public Simulator {
             return "the swept test between " + a + " and " + b + " at " + at +
                    " needed more than " + std::to_string(scene_.solver.max_search_iterations) +
                    " advancement steps: the pair moves or spins too fast for its distance to"
-                   " be bounded (a tunnel the engine cannot rule out); use a smaller dt" +
-                   (model == ContactModel::events
-                        ? std::string(", or \"resting_method\": \"auto\" or \"time-stepping\" "
-                                      "(whose contacts cover each step's whole motion unsampled)")
-                        : std::string());
+                   " be bounded (a tunnel the engine cannot rule out); use a smaller dt";
         }
         return "the simulation stopped at " + at;
     }
