@@ -1,12 +1,10 @@
 // Tunnelling caught (solver.ccd; docs/engine.md, "Tunnelling"). The seed tests
 // for interpenetration only at the end of a step, so a body that crosses a
 // thin one within a step is never seen. With ccd every pair's motion over the
-// step is swept by conservative advancement: from a free sample, step forward
-// by as long as the pair's gap, padded by the contact tolerance, cannot be
-// closed (at the fastest its points can move, along the axis that separates
-// it, along that axis vertex by vertex, in the frame of a turning face, or
-// between the discs that hold turning bodies at every angle, whichever allows
-// longest); each sample is where the seed's test is made.
+// step is swept by conservative advancement (conservative_advancement.h):
+// from a free sample, step forward by as long as the pair's gap, padded by
+// the contact tolerance, cannot be closed; each sample is where the seed's
+// test is made.
 #pragma once
 
 #include "configuration.h"

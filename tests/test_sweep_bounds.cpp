@@ -1,10 +1,11 @@
 // The sweep's bounds on turning bodies (docs/engine.md, "Tunnelling"): a
 // slowly turning face meeting a corner is charged the corner's own approach
 // (the bound in the face's frame), a spinner whose bounding disc clears a wall
-// is never charged its spin (the disc bound); each ran into "more than
-// max_search_iterations advancement steps" before. A body pivoting on a
-// corner under resting contact still does, and is refused, never handed to
-// time-stepping (which does not sweep).
+// is never charged its spin (the disc bound), and a box pivoting on a corner
+// held by resting contact is charged its corner's own motion to third order;
+// each ran into "more than max_search_iterations advancement steps" before.
+// A sweep that still stalls is refused, never handed to time-stepping (which
+// does not sweep).
 #include "configuration.h"
 #include "integrator.h"
 #include "narrow_phase_query.h"
@@ -14,6 +15,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 using namespace impulse;
@@ -117,25 +119,85 @@ TEST_CASE("a rod spinning many turns per step clear of a wall is sampled at its 
     CHECK(world.bodies[1].state.position.y == Approx(-19.0).margin(1e-12));
 }
 
-TEST_CASE("a sweep that cannot bound a pivoting box is refused under every resting method, "
-          "never handed to time-stepping",
+namespace {
+
+// A 0.8 x 0.4 m box of 1 kg on one corner, tilted 0.3 rad, at rest on a
+// floor under g = 9.81 m/s^2, with ccd and resting contact.
+constexpr double pivot_angle = 0.3;
+
+World pivot_world(RestingMethod method) {
+    SolverSettings s = with_ccd();
+    s.resting = true;
+    s.resting_method = method;
+    const double start_height = 0.4 * std::sin(pivot_angle) + 0.2 * std::cos(pivot_angle);
+    return make_world({static_body(make_box(5.0, 0.5), {0.0, -0.5}),
+                       dynamic_body(make_box(0.4, 0.2), 1.0, {0.0, start_height}, pivot_angle)},
+                      {0.0, -9.81}, 0.5, s);
+}
+
+// Its lowest corner's height above the floor.
+double lowest_corner(const World& world) {
+    const Body& box = world.bodies[1];
+    const Transform xf = transform_of(box.state);
+    double lowest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < box.shape.polygon.count; ++i) {
+        lowest = std::min(lowest, apply(xf, box.shape.polygon.vertices[i]).y);
+    }
+    return lowest;
+}
+
+} // namespace
+
+TEST_CASE("a box pivoting on a corner held by resting contact is swept, its corner held",
           "[unit][ccd]") {
-    // A 0.8 x 0.4 m box at rest on one corner, tilted 0.3 rad, on a floor:
-    // resting contact gives it an angular acceleration the sweep charges at
-    // every point, so each sample advances about 2e-5 s and the step stops.
-    // "auto" does not redo it by time-stepping, which does not sweep: a fast
-    // thin spinner elsewhere in the scene could then pass through a wall.
-    const double h = 1.0 / 60.0;
-    const double start_height = 0.4 * std::sin(0.3) + 0.2 * std::cos(0.3);
+    // The floor pushes up with N at the corner r from the centre (frictionless:
+    // no sideways force), and holds the corner's vertical acceleration at 0
+    // while the box starts from rest: a_y + alpha r_x = 0 with m a_y = N - m g
+    // and I alpha = r_x N, so N = g / (1/m + r_x^2 / I) and alpha = r_x N / I.
+    // Before the third-order bound the sweep charged every point alpha's
+    // second-order term and stopped after 200 samples of about 2e-5 s each.
+    const double c = std::cos(pivot_angle);
+    const double sn = std::sin(pivot_angle);
+    const double r_x = -0.4 * c + 0.2 * sn;
+    const double inertia = (0.8 * 0.8 + 0.4 * 0.4) / 12.0;
+    const double normal_force = 9.81 / (1.0 + r_x * r_x / inertia);
+    const double alpha = r_x * normal_force / inertia;
     for (const RestingMethod method : {RestingMethod::events, RestingMethod::automatic}) {
-        SolverSettings s = with_ccd();
-        s.resting = true;
-        s.resting_method = method;
-        World world = make_world({static_body(make_box(5.0, 0.5), {0.0, -0.5}),
-                                  dynamic_body(make_box(0.4, 0.2), 1.0, {0.0, start_height}, 0.3)},
-                                 {0.0, -9.81}, 0.5, s);
+        World world = pivot_world(method);
+        const double tolerance = world.solver.contact_tolerance;
+        // One short step: verlet under the constant alpha of one resting
+        // interval turns the box by alpha h^2 / 2.
+        const double h0 = 1e-3;
         std::vector<CollisionEvent> events;
-        const std::optional<StepError> error = step(world, 0.0, h, events);
+        REQUIRE_FALSE(step(world, 0.0, h0, events));
+        CHECK(world.bodies[1].state.angle - pivot_angle ==
+              Approx(0.5 * alpha * h0 * h0).epsilon(1e-9));
+        // Then whole steps of 1/60 s while it tips over: swept every step,
+        // never by time-stepping, its corner never deeper than the tolerance.
+        const double h = 1.0 / 60.0;
+        for (int k = 0; k < 12; ++k) {
+            INFO("step " << k);
+            REQUIRE_FALSE(step(world, h0 + k * h, h, events));
+            CHECK(lowest_corner(world) >= -tolerance);
+        }
+        CHECK(world.work.time_stepping_steps == 0);
+        CHECK(world.bodies[1].state.angle < 0.5 * pivot_angle); // it did tip
+    }
+}
+
+TEST_CASE("a sweep that stalls is refused under every resting method, never handed to "
+          "time-stepping",
+          "[unit][ccd]") {
+    // The same box with room for only 3 samples per pair: its sweep cannot
+    // reach the step's end. "auto" does not redo the step by time-stepping,
+    // which does not sweep: a fast thin spinner elsewhere in the scene could
+    // then pass through a wall.
+    for (const RestingMethod method : {RestingMethod::events, RestingMethod::automatic}) {
+        World world = pivot_world(method);
+        world.solver.max_search_iterations = 3;
+        const double start_height = world.bodies[1].state.position.y;
+        std::vector<CollisionEvent> events;
+        const std::optional<StepError> error = step(world, 0.0, 1.0 / 60.0, events);
         REQUIRE(error);
         CHECK(error->failure == StepFailure::sweep_not_converged);
         CHECK(world.work.time_stepping_steps == 0);
