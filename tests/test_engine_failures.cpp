@@ -307,35 +307,47 @@ TEST_CASE("An engine that refuses a scene with no golden is a SKIPPED row, exit 
     CHECK(fs::exists(p.golden("fall")));
 }
 
-TEST_CASE("An engine whose program does not exist is an error naming the project file's command",
+TEST_CASE("An engine whose program does not exist is one sentence naming the project file's "
+          "command, before any scene runs",
           "[engine-failures]") {
-    // The project's other engine still checks every scene.
+    // Not one error row per scene (the same sentence each time), and no
+    // golden written for the project's other engine either: the project
+    // file is wrong, so nothing runs until it is fixed.
     TempDir temp;
     const fs::path dir = temp.dir / "project";
     spit(dir / "impulse.json", R"({"schema": "impulse/project@1", "scenes": ["scenes"],
         "engines": [{"name": "impulse", "builtin": "impulse"},
                     {"name": "ghost", "command": ["./no-such-engine"]}]})");
     spit(dir / "scenes" / "fall.json", fall_scene("fall"));
+    spit(dir / "scenes" / "drop.json", fall_scene("drop"));
     require_exit(run_tool_in(dir, {"bless", "--engine", "impulse"}), 0);
-    const std::string sentence = "engine 'ghost' failed on ./scenes/fall.json: cannot start "
-                                 "'./no-such-engine': No such file or directory (the command of "
-                                 "impulse.json: engines[1])";
+    const std::string sentence =
+        "impulse.json: engines[1].command[0]: cannot start './no-such-engine': No such file or "
+        "directory (engine 'ghost'; no scene was run)\n";
 
     const Outcome checked = run_tool_in(dir, {"check"});
     require_exit(checked, 2);
     require_no_stack_trace(checked);
-    CHECK(has(checked.out, "ok     impulse/fall"));
-    CHECK(has(checked.out, "ERROR  ghost/fall "));
-    CHECK(has(checked.out, "  " + sentence + "\n"));
+    CHECK(checked.err == sentence);
+    CHECK(checked.out.empty());
+    // The engine that is there still checks on its own.
+    require_exit(run_tool_in(dir, {"check", "--engine", "impulse"}), 0);
 
+    const fs::path golden = dir / "goldens" / "impulse" / "fall.json";
+    const auto before = fs::last_write_time(golden);
     const Outcome blessed = run_tool_in(dir, {"bless"});
     require_exit(blessed, 2);
-    CHECK(has(blessed.err, sentence));
+    CHECK(blessed.err == sentence);
     CHECK_FALSE(fs::exists(dir / "goldens" / "ghost"));
-    CHECK(fs::exists(dir / "goldens" / "impulse" / "fall.json"));
+    CHECK(fs::last_write_time(golden) == before);
 
     const Outcome ran = run_tool_in(dir, {"run", "scenes/fall.json", "--engine", "ghost"});
     require_exit(ran, 2);
-    CHECK(has(ran.err, "cannot start './no-such-engine': No such file or directory"));
+    CHECK(ran.err == sentence);
     CHECK(ran.out.empty());
+
+    // A folder where the program should be is not a program either.
+    fs::create_directories(dir / "no-such-engine");
+    CHECK(
+        has(run_tool_in(dir, {"check"}).err, "cannot start './no-such-engine': Permission denied"));
 }

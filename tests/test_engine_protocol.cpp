@@ -401,6 +401,39 @@ TEST_CASE("an engine that fails is one sentence naming engine, scene and message
     }
 }
 
+TEST_CASE("whether a command can start is found as posix_spawnp finds it, without running it",
+          "[engine-protocol]") {
+    // start_problem is the preflight of every verb (one sentence before any
+    // scene runs): for each command it must say exactly what starting it
+    // says, in the same working folder.
+    TempDir temp;
+    spit(temp.dir / "engine.sh", "#!/bin/sh\nexit 0\n");
+    ::chmod((temp.dir / "engine.sh").c_str(), 0755);
+    spit(temp.dir / "plain.sh", "#!/bin/sh\nexit 0\n");
+    ::chmod((temp.dir / "plain.sh").c_str(), 0644);
+    std::filesystem::create_directories(temp.dir / "folder");
+    const std::string here = temp.dir.string();
+    const std::vector<std::vector<std::string>> commands = {
+        {"sh", "-c", "exit 0"},  {"./engine.sh"},
+        {"./plain.sh"},          {"./folder"},
+        {"./no-such-engine"},    {"/nonexistent/engine"},
+        {"build/engine --fast"}, {"no-such-engine-anywhere"},
+        {here + "/engine.sh"}};
+    for (const std::vector<std::string>& command : commands) {
+        INFO(command.front());
+        ProcessRequest request;
+        request.command = command;
+        request.working_directory = here;
+        request.time_limit = 10.0;
+        request.output_limit = 1024;
+        CHECK(start_problem(command, here) == run_process(request).not_started);
+    }
+    CHECK_FALSE(start_problem({"./engine.sh"}, here));
+    CHECK(start_problem({"./plain.sh"}, here) == "cannot start './plain.sh': Permission denied");
+    // Relative to the engine's folder, not the harness's.
+    CHECK(start_problem({"./engine.sh"}, (temp.dir / "folder").string()));
+}
+
 TEST_CASE("an engine's output is read as strictly as a scene", "[engine-protocol]") {
     Fixture f;
     const std::string output = "engine 'fake-engine' on " + f.fall.file + ": output";

@@ -59,11 +59,12 @@ TEST_CASE("init writes a project file and an example scene that bless and check 
     CHECK(has(init.out, "impulse bless"));
     CHECK(has(init.out, "impulse regen"));
 
-    // As written, the placeholder engine is the scene's ERROR naming it.
+    // As written, the placeholder engine is one sentence naming where its
+    // command is written, before any scene runs.
     const Outcome placeholder = run_tool_in(dir, {"check"});
     require_exit(placeholder, 2);
-    CHECK(has(placeholder.out, "ERROR  drop"));
-    CHECK(has(placeholder.out, "my-engine"));
+    CHECK(has(placeholder.err, "impulse.json: engines[0].command[0]: cannot start './my-engine'"));
+    CHECK(has(placeholder.err, "engine 'my-engine'"));
 
     // With an engine that runs, the example's exact answer holds: bless
     // accepts it (a run breaking the scene's expectation is refused, exit 1).

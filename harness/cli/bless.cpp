@@ -316,6 +316,9 @@ int write_goldens(const std::string& verb, const std::vector<std::string>& args,
     }
     const Project project = find_project(a.option("--root"));
     const std::vector<EngineSpec> engines = engines_chosen(project, a.option("--engine"));
+    for (const EngineSpec& engine : engines) {
+        require_startable(engine);
+    }
     const std::vector<std::string> paths = scenes_named(project, a.positional);
     Preparation prepared = prepare_all(project, engines, paths, a.has_flag("--quiet"), err);
     const bool partial = a.has_flag("--partial");

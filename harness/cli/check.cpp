@@ -306,6 +306,9 @@ std::optional<CheckRequest> read_request(const Project& project, const Arguments
     CheckRequest r;
     r.options = gate_options(a);
     r.engines = engines_chosen(project, a.option("--engine"));
+    for (const EngineSpec& engine : r.engines) {
+        require_startable(engine);
+    }
     r.goldens = protected_folders(project);
     r.json = a.option("--json");
     r.junit = a.option("--junit");

@@ -43,13 +43,12 @@ EngineSpec command_engine(const std::optional<std::string>& name, const std::str
 
 EngineSpec chosen_engine(const Project& project, const Arguments& arguments) {
     const std::optional<std::string> name = arguments.option(engine_option);
-    if (const std::optional<std::string> command = arguments.option(engine_command_option)) {
-        return command_engine(name, *command);
-    }
-    if (name) {
-        return engine_named(project, *name, true);
-    }
-    return project.engines.front();
+    const std::optional<std::string> command = arguments.option(engine_command_option);
+    EngineSpec engine = command ? command_engine(name, *command)
+                        : name  ? engine_named(project, *name, true)
+                                : project.engines.front();
+    require_startable(engine);
+    return engine;
 }
 
 } // namespace impulse::harness::cli

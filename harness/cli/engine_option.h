@@ -17,7 +17,8 @@ inline constexpr const char* engine_command_option = "--engine-command";
 // protocol in the current folder), named by --engine NAME ("external" when
 // not given); else --engine NAME: the project's engine of that name, or the
 // built-in impulse, box2d or chipmunk; else the project's first engine. Throws
-// UsageError or InputError (an unknown name, listing the known ones).
+// UsageError or InputError (an unknown name, listing the known ones; a
+// program that is not there to start, require_startable).
 EngineSpec chosen_engine(const Project& project, const Arguments& arguments);
 
 } // namespace impulse::harness::cli

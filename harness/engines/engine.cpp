@@ -266,6 +266,20 @@ EngineSpec chipmunk_engine() {
     return spec;
 }
 
+void require_startable(const EngineSpec& engine) {
+    if (engine.kind != EngineSpec::Kind::external) {
+        return;
+    }
+    const std::optional<std::string> problem =
+        start_problem(engine.command, engine.working_directory);
+    if (!problem) {
+        return;
+    }
+    const bool declared = !engine.origin.empty() && engine.origin != "--engine-command";
+    throw InputError(declared ? engine.origin + ".command[0]" : "--engine-command", "",
+                     *problem + " (engine '" + engine.name + "'; no scene was run)");
+}
+
 EngineRun run_engine(const EngineSpec& engine, const Scene& scene, const Overrides& overrides) {
     const auto start = std::chrono::steady_clock::now();
     EngineRun result;

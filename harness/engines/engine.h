@@ -61,6 +61,13 @@ EngineSpec impulse_engine();
 EngineSpec box2d_engine();
 EngineSpec chipmunk_engine();
 
+// Throws InputError, one sentence naming where the engine was declared
+// (impulse.json: engines[i].command[0], or --engine-command), when an outside
+// engine's program is not there to start: checked once before any scene
+// runs, so a wrong command is one sentence, not one error row per scene.
+// Nothing for the engines in process.
+void require_startable(const EngineSpec& engine);
+
 // Runs `scene` (with `overrides` applied) in `engine`. Throws InputError with
 // one sentence naming the engine, the scene and the engine's own message for
 // any failure but a refusal of unsupported settings.

@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
 #include <optional>
@@ -95,6 +96,24 @@ std::string start_hint(const std::string& program, int code) {
     return "";
 }
 
+std::string cannot_start(const std::string& program, int code) {
+    return "cannot start '" + printable_path(program) + "': " + std::strerror(code) +
+           start_hint(program, code);
+}
+
+// 0 when `path` names a file this process may execute, else the errno execve
+// would give (a folder: EACCES).
+int execute_error(const std::string& path) {
+    struct stat info {};
+    if (::stat(path.c_str(), &info) != 0) {
+        return errno;
+    }
+    if (S_ISDIR(info.st_mode)) {
+        return EACCES;
+    }
+    return ::access(path.c_str(), X_OK) == 0 ? 0 : errno;
+}
+
 // posix_spawnp in a new process group, stdin /dev/null, stdout and stderr the
 // pipes, in the working directory; the error text when it cannot start.
 std::optional<std::string> spawn(const ProcessRequest& request, int out, int err, pid_t& pid) {
@@ -127,8 +146,7 @@ std::optional<std::string> spawn(const ProcessRequest& request, int out, int err
     if (code == 0) {
         return std::nullopt;
     }
-    return "cannot start '" + printable_path(request.command.front()) +
-           "': " + std::strerror(code) + start_hint(request.command.front(), code);
+    return cannot_start(request.command.front(), code);
 }
 
 // Reads what is there without blocking; false at end of file.
@@ -325,6 +343,43 @@ class Run {
 };
 
 } // namespace
+
+std::optional<std::string> start_problem(const std::vector<std::string>& command,
+                                         const std::string& working_directory) {
+    const std::string& program = command.front();
+    const auto from_folder = [&](const std::string& path) {
+        return !path.empty() && path.front() == '/' ? path : working_directory + "/" + path;
+    };
+    if (program.empty()) {
+        return cannot_start(program, ENOENT);
+    }
+    if (program.find('/') != std::string::npos) {
+        const int code = execute_error(from_folder(program));
+        return code == 0 ? std::nullopt : std::optional<std::string>(cannot_start(program, code));
+    }
+    // execvp's search: each PATH entry in turn (an empty one is the working
+    // folder; glibc's default when PATH is unset), EACCES if some candidate
+    // was there but not executable and none was.
+    const char* path_variable = std::getenv("PATH");
+    const std::string search = path_variable != nullptr ? path_variable : "/bin:/usr/bin";
+    int code = ENOENT;
+    std::size_t begin = 0;
+    for (;;) {
+        const std::size_t end = search.find(':', begin);
+        const std::string folder = search.substr(begin, end - begin);
+        const int here =
+            execute_error(from_folder((folder.empty() ? "." : folder) + "/" + program));
+        if (here == 0) {
+            return std::nullopt;
+        }
+        code = here == EACCES ? EACCES : code;
+        if (end == std::string::npos) {
+            break;
+        }
+        begin = end + 1;
+    }
+    return cannot_start(program, code);
+}
 
 ProcessResult run_process(const ProcessRequest& request) {
     ProcessResult result;

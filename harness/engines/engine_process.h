@@ -39,6 +39,15 @@ struct ProcessResult {
 // failure of this process's own (pipes, memory).
 ProcessResult run_process(const ProcessRequest& request);
 
+// Why `command` could not start in `working_directory`, found the way
+// run_process's posix_spawnp finds it (a word with a '/' is a path from that
+// folder, a bare word is looked up in PATH), without running it: the same
+// text as ProcessResult::not_started, or nothing when a program is there to
+// run. A program that is there but fails as it starts (a missing
+// interpreter) passes here and is caught when it runs.
+std::optional<std::string> start_problem(const std::vector<std::string>& command,
+                                         const std::string& working_directory);
+
 // The last non-empty line of `text` that is not a runtime's trailer to an
 // uncaught exception (indented "at ..." stack frames, Node's "Node.js vN"
 // line; the last non-empty line when every line is one), control characters
