@@ -127,6 +127,22 @@ TEST_CASE("compare --with box2d-2.4: the JSON has one column per engine and ever
     CHECK(head_on["errors"]["box2d-2.4"].is_null());
 }
 
+TEST_CASE("compare's first line says an engine other than impulse is only given the integrator",
+          "[compare-engines]") {
+    // impulse integrates with what it is given; another engine receives it as
+    // solver.integrator and may have none to choose (chipmunk has one).
+    const Outcome own = run_tool({"compare", "head-on", "--root", root, "--with", "box2d-2.4"});
+    CHECK(own.out.rfind("compare: 1 scene; impulse (symplectic-euler, Box2D's integrator) beside "
+                        "box2d-2.4\n",
+                        0) == 0);
+    const Outcome other = run_tool(
+        {"compare", "head-on", "--root", root, "--engine", "chipmunk", "--with", "box2d-2.4"});
+    CHECK(other.out.rfind("compare: 1 scene; chipmunk (given symplectic-euler, Box2D's "
+                          "integrator, which an engine without integrators ignores) beside "
+                          "box2d-2.4\n",
+                          0) == 0);
+}
+
 TEST_CASE("compare's box2d-2.4 and impulse columns are impulse box2d's numbers",
           "[compare-engines]") {
     const std::vector<std::string> scenes = {"drop-box", "head-on", "tilted-box"};

@@ -10,6 +10,7 @@ ComparisonReport run_comparison(const std::vector<std::string>& paths,
     report.skipped = request.skipped;
     report.notes = request.notes;
     report.engine = request.options.engine.name;
+    report.engine_is_impulse = request.options.engine.kind == EngineSpec::Kind::impulse;
     report.scene_integrator = request.options.scene_integrator;
     CompareOptions options = request.options;
     options.references.clear();

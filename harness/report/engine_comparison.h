@@ -23,6 +23,7 @@ inline constexpr const char* judged_reference = "box2d-2.4";
 
 struct ComparisonReport {
     std::string engine;                      // the engine under study
+    bool engine_is_impulse = true;           // else an engine that may have no integrators
     bool scene_integrator = false;           // --scene-integrator
     std::vector<ReferenceEngine> references; // the columns after the engine under study
     std::vector<ReferenceEngine> skipped;    // not on this machine and not asked for

@@ -234,11 +234,17 @@ std::string comparison_text(const ComparisonReport& report, bool summary_only) {
     for (const ReferenceEngine& r : report.references) {
         references += (references.empty() ? "" : ", ") + r.name;
     }
+    // Another engine is given the integrator as solver.integrator, which an
+    // engine without integrators ignores (docs/engine-protocol.md, Overrides).
+    const std::string integrator = report.scene_integrator ? "each scene's own integrator"
+                                                           : "symplectic-euler, Box2D's integrator";
+    const std::string given =
+        report.engine_is_impulse
+            ? integrator
+            : "given " + integrator + ", which an engine without integrators ignores";
     std::string out = "compare: " + plural(report.scenes.size(), "scene", "scenes") + "; " +
-                      report.engine + " (" +
-                      (report.scene_integrator ? "each scene's own integrator"
-                                               : "symplectic-euler, Box2D's integrator") +
-                      ") beside " + (references.empty() ? "no reference" : references) + "\n";
+                      report.engine + " (" + given + ") beside " +
+                      (references.empty() ? "no reference" : references) + "\n";
     for (const std::string& note : report.notes) {
         out += "  " + note + "\n";
     }
