@@ -13,17 +13,15 @@ struct PairSweep {
     double time = 0.0; // found: the sample that interpenetrates; stalled: the last free one
 };
 
-// Samples pair p from `start` until it interpenetrates, or up to `end`. With
-// `strict`, another pair was found at `end` already, so a sample there could
-// not be earlier and is not taken; otherwise the last sample is at exactly
-// end = h, where the seed's end-of-step test looks.
-PairSweep sweep_pair(World& world, const Configuration& start, std::size_t p, double end,
-                     bool strict) {
-    const Pair& pair = world.pairs[p];
+// Samples `pair` from `start` until its separation falls below `floor`, or up
+// to `end`. With `strict`, another pair was found at `end` already, so a
+// sample there could not be earlier and is not taken; otherwise the last
+// sample is at exactly end = h, where the seed's end-of-step test looks.
+PairSweep sweep_pair(World& world, const Configuration& start, const Pair& pair, double floor,
+                     double end, bool strict) {
     const std::size_t ia = static_cast<std::size_t>(pair.a);
     const std::size_t ib = static_cast<std::size_t>(pair.b);
     const PairMotion motion = motion_of(world, start, pair);
-    const double floor = interpenetration_floor(world, p);
     BodyState at_a = start[ia];
     BodyState at_b = start[ib];
     double u = 0.0;
@@ -55,17 +53,20 @@ PairSweep sweep_pair(World& world, const Configuration& start, std::size_t p, do
     }
 }
 
-} // namespace
-
-SweptContact first_swept_contact(World& world, const Configuration& start, double h) {
+// The earliest sample over pairs(0..count) (pair_at(p), floor_at(p)), as
+// first_swept_contact says.
+template <class PairAt, class FloorAt>
+SweptContact earliest(World& world, const Configuration& start, std::size_t count, PairAt pair_at,
+                      FloorAt floor_at, double h) {
     SweptContact swept;
     int stalled = -1;
     double stalled_at = 0.0;
-    for (std::size_t p = 0; p < world.pairs.size(); ++p) {
+    for (std::size_t p = 0; p < count; ++p) {
         // Once a pair is found, later pairs need only be swept to before its
         // time: at the same time the lower index wins.
         const bool strict = swept.pair >= 0;
-        const PairSweep r = sweep_pair(world, start, p, strict ? swept.time : h, strict);
+        const PairSweep r =
+            sweep_pair(world, start, pair_at(p), floor_at(p), strict ? swept.time : h, strict);
         if (r.outcome == PairSweep::Outcome::found) {
             swept.pair = static_cast<int>(p);
             swept.time = r.time;
@@ -85,6 +86,22 @@ SweptContact first_swept_contact(World& world, const Configuration& start, doubl
         swept.time = h;
     }
     return swept;
+}
+
+} // namespace
+
+SweptContact first_swept_contact(World& world, const Configuration& start, double h) {
+    return earliest(
+        world, start, world.pairs.size(), [&](std::size_t p) { return world.pairs[p]; },
+        [&](std::size_t p) { return interpenetration_floor(world, p); }, h);
+}
+
+SweptContact first_swept_crossing(World& world, const Configuration& start,
+                                  const std::vector<Pair>& pairs, const std::vector<double>& depth,
+                                  double h) {
+    return earliest(
+        world, start, pairs.size(), [&](std::size_t p) { return pairs[p]; },
+        [&](std::size_t p) { return -depth[p]; }, h);
 }
 
 } // namespace impulse

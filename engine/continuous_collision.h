@@ -9,6 +9,8 @@
 
 #include "configuration.h"
 
+#include <vector>
+
 namespace impulse {
 
 struct SweptContact {
@@ -30,5 +32,14 @@ struct SweptContact {
 // contact found (a pair that stalls only later does not matter: the step
 // resolves that contact first and sweeps again from there).
 SweptContact first_swept_contact(World& world, const Configuration& start, double h);
+
+// The same sweep for time-stepping (docs/engine.md, "Tunnelling"): the
+// earliest sample over (0, h] at which one of `pairs` (a dynamic, as in
+// world.pairs) is deeper than its `depth`, its bodies moved from `start` as
+// advance_body() moves them; `pair` indexes `pairs`. Deeper than its depth
+// at no sample, a pair is nowhere deeper than depth + contact_tolerance.
+SweptContact first_swept_crossing(World& world, const Configuration& start,
+                                  const std::vector<Pair>& pairs, const std::vector<double>& depth,
+                                  double h);
 
 } // namespace impulse

@@ -8,6 +8,7 @@
 #include "overlap_guard.h"
 #include "restitution.h"
 #include "shape.h"
+#include "swept_time_step.h"
 #include "time_stepping_scratch.h"
 
 #include <algorithm>
@@ -298,6 +299,13 @@ std::optional<StepError> TimeStep::run() {
         retrying_ = true;
         restore();
         events_.resize(events_at_start);
+    }
+    if (world_.solver.ccd) {
+        if (std::optional<StepError> error = swept_crossing(world_, s_, t0_, h_)) {
+            restore();
+            events_.resize(events_at_start);
+            return error;
+        }
     }
     guard_overlaps(world_, h_, s_, pairs_stale);
     guard_energy(world_, s_);

@@ -160,6 +160,8 @@ enum class StepFailure {
                               // solver.max_search_iterations samples
     contact_pass_through,     // time-stepping: the holding answer carries a pair past its
                               // gap by more than the pair is thick (a crossing)
+    swept_crossing,           // time-stepping with ccd: the step's motion carries a pair
+                              // through each other where no contact point held it
 };
 
 struct StepError {

@@ -450,13 +450,10 @@ TEST_CASE("solver", "[scene]") {
                          "solver.ccd", "is not available with \"stepping\": \"local\"");
     }
     SECTION("ccd with local stepping and resting") {
-        // resting with local stepping is time-stepping, which needs no ccd.
+        // ccd sweeps the whole world's motion at once, local stepping one pair.
         require_rejected(
             scene_with(R"("solver": {"stepping": "local", "resting": true, "ccd": true},)"),
-            "solver.ccd",
-            "is not needed with \"resting\": true and \"stepping\": \"local\", where "
-            "\"resting_method\": \"auto\" uses time-stepping: its speculative contacts already "
-            "cover each step's whole motion");
+            "solver.ccd", "is not available with \"stepping\": \"local\"");
     }
 }
 

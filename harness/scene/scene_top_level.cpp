@@ -97,40 +97,6 @@ void read_resting_method(const Node& node, SolverSettings& solver) {
     }
 }
 
-// ccd sweeps each pair's motion to find the collision inside the step. Time-
-// stepping contact has no collision search: its speculative contact points
-// are taken for every pair within reach of the step's motion, so a ccd
-// request there would do nothing, and is refused rather than ignored.
-void refuse_ccd_with_time_stepping(const Node& ccd, const SolverSettings& solver) {
-    if (!time_stepping_from_start(solver)) {
-        return;
-    }
-    const std::string why =
-        solver.resting_method == RestingMethod::time_stepping
-            ? "is not needed with \"resting_method\": \"time-stepping\""
-            : "is not needed with \"resting\": true and \"stepping\": \"local\", where "
-              "\"resting_method\": \"auto\" uses time-stepping";
-    ccd.fail(why + ": its speculative contacts already cover each step's whole motion, so "
-                   "nothing passes through unseen; remove \"ccd\"");
-}
-
-// "auto" with more than 16 dynamic bodies time-steps from the start whatever
-// the stepping, which is known only once the bodies are (an outside review
-// found ccd silently ignored there: the same bits with and without it).
-void refuse_ccd_with_many_bodies(const Node& root, const Scene& scene) {
-    if (!scene.solver.ccd || time_stepping_from_start(scene.solver) ||
-        !time_stepping_from_start(scene)) {
-        return;
-    }
-    optional_member(*optional_member(root, "solver"), "ccd")
-        ->fail("is not needed with \"resting\": true and more than " +
-               std::to_string(events_bodies) +
-               " dynamic bodies, where \"resting_method\": \"auto\" uses time-stepping from the "
-               "start: its speculative contacts already cover each step's whole motion, so "
-               "nothing passes through unseen; remove \"ccd\", or set \"resting_method\": "
-               "\"events\" to keep the event model with ccd");
-}
-
 void read_solver(const Node& node, SolverSettings& solver) {
     require_object(node);
     reject_unknown_keys(node,
@@ -202,7 +168,6 @@ void read_solver(const Node& node, SolverSettings& solver) {
     solver.ccd = read_bool_or(node, "ccd", solver.ccd);
     if (solver.ccd) {
         const Node ccd = *optional_member(node, "ccd");
-        refuse_ccd_with_time_stepping(ccd, solver);
         refuse_with_local(ccd);
     }
 }
@@ -233,7 +198,6 @@ Scene read_scene(const Node& root, const std::string& file) {
         read_solver(*solver, scene.solver);
     }
     read_bodies(root, scene);
-    refuse_ccd_with_many_bodies(root, scene);
     // These refer to bodies, so they are read once the bodies are known.
     if (const std::optional<Node> tolerance = optional_member(root, "tolerance")) {
         read_tolerances(*tolerance, scene.tolerances);

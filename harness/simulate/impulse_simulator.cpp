@@ -307,6 +307,13 @@ class ImpulseSimulator final : public Simulator {
                    " by more than the two are thick, where they could "
                    "cross unseen (docs/engine.md, \"Dense contact\")" +
                    mass_span(error) + "a smaller dt (now " + format_double(scene_.dt) + " s)";
+        case StepFailure::swept_crossing:
+            return a + " passes through " + b + " at " + at +
+                   " within one time step: the step holds the contact points its start sees, "
+                   "and ccd's sweep of the step's motion found the pair crossing where none "
+                   "held it (a body turning or moving far within a step; docs/engine.md, "
+                   "\"Tunnelling\"); use a smaller dt (now " +
+                   format_double(scene_.dt) + " s)";
         case StepFailure::sweep_not_converged:
             return "the swept test between " + a + " and " + b + " at " + at +
                    " needed more than " + std::to_string(scene_.solver.max_search_iterations) +
