@@ -66,12 +66,12 @@ double turning_radius(const Body& body) {
 
 } // namespace
 
-PairMotion motion_of(const World& world, const Configuration& start, const Pair& pair) {
+SweepMotion sweep_motion_of(const World& world, const Configuration& start, const Pair& pair) {
     const std::size_t ia = static_cast<std::size_t>(pair.a);
     const std::size_t ib = static_cast<std::size_t>(pair.b);
     const Body& a = world.bodies[ia];
     const Body& b = world.bodies[ib];
-    PairMotion m;
+    SweepMotion m;
     m.c = rate_factor(world.solver.integrator);
     const Acceleration acc_a = acceleration_of(world, ia);
     m.radius_a = turning_radius(a);
@@ -115,13 +115,23 @@ double first_reach(double a2, double b1, double m) {
 double first_cubic_reach(double m, double b1, double b2, double j, double limit) {
     const auto value = [&](double d) { return m + d * (b1 + d * (0.5 * b2 - d * j / 6.0)); };
     std::array<double, 3> ends{limit, limit, limit};
-    // The slope b1 + b2 d - (j / 2) d^2 is 0 at (b2 -+ sqrt(b2^2 + 2 j b1)) / j.
+    // The slope b1 + b2 d - (j / 2) d^2 is 0 at (b2 -+ sqrt(b2^2 + 2 j b1)) / j,
+    // taken in the form that does not cancel: with q = b2 + sign(b2) sqrt(...)
+    // the roots are q / j and -2 b1 / q. The difference form lost the first
+    // one to rounding when j was tiny (a box closing but slowing, turning at
+    // 1e-6 rad/s: the stretch was taken for monotone, the root missed, and the
+    // box went 3e-4 m into a ceiling; an outside review).
     if (j > 0.0) {
         const double discriminant = b2 * b2 + 2.0 * j * b1;
-        if (discriminant > 0.0) {
+        if (discriminant >= 0.0) {
             const double root = std::sqrt(discriminant);
-            ends[0] = (b2 - root) / j;
-            ends[1] = (b2 + root) / j;
+            const double q = b2 >= 0.0 ? b2 + root : b2 - root;
+            if (q != 0.0) {
+                const double r1 = q / j;
+                const double r2 = -2.0 * b1 / q;
+                ends[0] = r1 < r2 ? r1 : r2;
+                ends[1] = r1 < r2 ? r2 : r1;
+            }
         }
     } else if (b2 != 0.0) {
         ends[0] = -b1 / b2;
@@ -187,7 +197,7 @@ struct PointsAlong {
     double omega_b = 0.0;
 };
 
-PointsAlong points_along(const World& world, const Pair& pair, const PairMotion& m, double u,
+PointsAlong points_along(const World& world, const Pair& pair, const SweepMotion& m, double u,
                          const Transform& xa, const Transform& xb, Vec2 n) {
     PointsAlong pts;
     pts.omega_a = m.radius_a > 0.0 ? m.omega_a + m.c * u * m.alpha_a : 0.0;
@@ -235,7 +245,7 @@ bool each_point_pair(const PointsAlong& pts, double margin_shift, Visit&& visit)
 // wall (its corner receding after an impact, or passing the wall's line at
 // its closest) is sampled after a fraction of a spin, not after d / (R |omega|)
 // (a spinning box grazing a wall needed more than 200 samples per step).
-double vertex_advance(const PairMotion& m, const PointsAlong& pts, double margin_shift,
+double vertex_advance(const SweepMotion& m, const PointsAlong& pts, double margin_shift,
                       double left) {
     const auto turning = [&](double radius, double omega, double alpha) {
         const double fastest = std::fabs(omega) + m.c * std::fabs(alpha) * left;
@@ -265,7 +275,8 @@ double vertex_advance(const PairMotion& m, const PointsAlong& pts, double margin
 // rate and second derivative along the normal about 0) is sampled when the
 // third-order term may have sunk the corner by the tolerance, not every
 // sqrt(tolerance / (R alpha)) seconds.
-double jerk_advance(const PairMotion& m, const PointsAlong& pts, double margin_shift, double left) {
+double jerk_advance(const SweepMotion& m, const PointsAlong& pts, double margin_shift,
+                    double left) {
     const auto turning = [&](double radius, double omega, double alpha) {
         const double fastest = std::fabs(omega) + m.c * std::fabs(alpha) * left;
         return radius * fastest * (fastest * fastest + 3.0 * m.c * std::fabs(alpha));
@@ -309,7 +320,7 @@ double jerk_advance(const PairMotion& m, const PointsAlong& pts, double margin_s
 // beside the point, not over it: a slowly turning plank meeting a post's
 // corner was sampled every (corner's speed / R omega) of the gap and stalled
 // at every dt; in the plank's frame the corner is charged its own speed.
-double frame_advance(const World& world, const Pair& pair, const PairMotion& m, double u,
+double frame_advance(const World& world, const Pair& pair, const SweepMotion& m, double u,
                      double floor, const Transform& xa, const Transform& xb, const Axis& axis,
                      double end) {
     const bool face_of_a = axis.owner == Face::a;
@@ -371,7 +382,7 @@ double frame_advance(const World& world, const Pair& pair, const PairMotion& m, 
 // fast it spins, a rod whose disc clears a wall is sampled once per step (the
 // bounds above charge R |omega| d of turning, which passes any clearance once
 // the rod turns far enough within a step).
-double disc_advance(const World& world, const Pair& pair, const PairMotion& m, double u,
+double disc_advance(const World& world, const Pair& pair, const SweepMotion& m, double u,
                     double floor, const Transform& xa, const Transform& xb) {
     const Shape& a = world.bodies[static_cast<std::size_t>(pair.a)].shape;
     const Shape& b = world.bodies[static_cast<std::size_t>(pair.b)].shape;
@@ -408,7 +419,7 @@ double disc_advance(const World& world, const Pair& pair, const PairMotion& m, d
 // contact_tolerance past the floor; one at rest on the ground under gravity,
 // when gravity has pulled it that far (the quadratic term, where the largest
 // speed over the rest of the step would make it crawl).
-double safe_advance(const World& world, const Pair& pair, const PairMotion& m, double u, double s,
+double safe_advance(const World& world, const Pair& pair, const SweepMotion& m, double u, double s,
                     double floor, const BodyState& at_a, const BodyState& at_b, double end) {
     const double tolerance = world.solver.contact_tolerance;
     // The pair may close by what is left above the floor (none if already

@@ -17,7 +17,7 @@ namespace impulse {
 // a_rel = 0 for two dynamic bodies, which fall together, and g against a
 // static one), and each body turns at omega0 + c u alpha, moving its surface
 // by up to R per radian.
-struct PairMotion {
+struct SweepMotion {
     Vec2 w0;
     Vec2 a_rel;
     double c = 0.0;
@@ -29,12 +29,12 @@ struct PairMotion {
     double alpha_b = 0.0;
 };
 
-PairMotion motion_of(const World& world, const Configuration& start, const Pair& pair);
+SweepMotion sweep_motion_of(const World& world, const Configuration& start, const Pair& pair);
 
 // How long after a free sample at u (separation s, the bodies at at_a and
 // at_b) the pair certainly stays above `floor` less contact_tolerance;
 // samples need go no further than `end`.
-double safe_advance(const World& world, const Pair& pair, const PairMotion& m, double u, double s,
+double safe_advance(const World& world, const Pair& pair, const SweepMotion& m, double u, double s,
                     double floor, const BodyState& at_a, const BodyState& at_b, double end);
 
 } // namespace impulse

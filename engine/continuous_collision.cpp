@@ -21,7 +21,7 @@ PairSweep sweep_pair(World& world, const Configuration& start, const Pair& pair,
                      double end, bool strict) {
     const std::size_t ia = static_cast<std::size_t>(pair.a);
     const std::size_t ib = static_cast<std::size_t>(pair.b);
-    const PairMotion motion = motion_of(world, start, pair);
+    const SweepMotion motion = sweep_motion_of(world, start, pair);
     BodyState at_a = start[ia];
     BodyState at_b = start[ib];
     double u = 0.0;

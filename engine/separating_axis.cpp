@@ -6,10 +6,8 @@ namespace impulse {
 
 namespace {
 
-constexpr double never = std::numeric_limits<double>::infinity();
-
-void consider(Axis& best, Vec2 n, const Shape& a, const Transform& xa, const Shape& b,
-              const Transform& xb, Face owner = Face::none, int face = -1) {
+void consider_axis(Axis& best, Vec2 n, const Shape& a, const Transform& xa, const Shape& b,
+                   const Transform& xb, Face owner = Face::none, int face = -1) {
     const double gap = -support(a, xa, -n) - support(b, xb, n);
     if (gap > best.gap) {
         best = {n, gap, owner, face};
@@ -22,7 +20,7 @@ double support(const Shape& shape, const Transform& xf, Vec2 d) {
     if (shape.type == ShapeType::circle) {
         return dot(d, xf.p) + shape.radius * length(d);
     }
-    double best = -never;
+    double best = -std::numeric_limits<double>::infinity();
     for (int i = 0; i < shape.polygon.count; ++i) {
         const double s = dot(d, apply(xf, shape.polygon.vertices[i]));
         best = s > best ? s : best;
@@ -34,12 +32,12 @@ Axis separating_axis(const Shape& a, const Transform& xa, const Shape& b, const 
     Axis best;
     if (a.type == ShapeType::polygon) {
         for (int i = 0; i < a.polygon.count; ++i) {
-            consider(best, -rotate(xa.q, a.polygon.normals[i]), a, xa, b, xb, Face::a, i);
+            consider_axis(best, -rotate(xa.q, a.polygon.normals[i]), a, xa, b, xb, Face::a, i);
         }
     }
     if (b.type == ShapeType::polygon) {
         for (int i = 0; i < b.polygon.count; ++i) {
-            consider(best, rotate(xb.q, b.polygon.normals[i]), a, xa, b, xb, Face::b, i);
+            consider_axis(best, rotate(xb.q, b.polygon.normals[i]), a, xa, b, xb, Face::b, i);
         }
     }
     const auto towards = [](Vec2 from, Vec2 to) {
@@ -48,14 +46,14 @@ Axis separating_axis(const Shape& a, const Transform& xa, const Shape& b, const 
         return norm > 0.0 ? (1.0 / norm) * d : Vec2{0.0, 1.0};
     };
     if (a.type == ShapeType::circle && b.type == ShapeType::circle) {
-        consider(best, towards(xb.p, xa.p), a, xa, b, xb);
+        consider_axis(best, towards(xb.p, xa.p), a, xa, b, xb);
     } else if (a.type == ShapeType::circle) {
         for (int i = 0; i < b.polygon.count; ++i) {
-            consider(best, towards(apply(xb, b.polygon.vertices[i]), xa.p), a, xa, b, xb);
+            consider_axis(best, towards(apply(xb, b.polygon.vertices[i]), xa.p), a, xa, b, xb);
         }
     } else if (b.type == ShapeType::circle) {
         for (int i = 0; i < a.polygon.count; ++i) {
-            consider(best, towards(xb.p, apply(xa, a.polygon.vertices[i])), a, xa, b, xb);
+            consider_axis(best, towards(xb.p, apply(xa, a.polygon.vertices[i])), a, xa, b, xb);
         }
     }
     return best;
