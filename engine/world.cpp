@@ -209,6 +209,7 @@ std::optional<StepError> step_automatic(World& world, double t0, double dt,
     }
     if (!world.solver.ccd && could_pass_through(world, dt)) {
         world.work.time_stepping_for_speed = 1;
+        world.work.time_stepping_switched = 1;
         return step_by_time_stepping(world, t0, dt, events);
     }
     const Configuration start = configuration_of(world);
@@ -222,6 +223,7 @@ std::optional<StepError> step_automatic(World& world, double t0, double dt,
     events.resize(events_at_start);
     world.resting_contacts.any = false;
     world.work.steps = steps; // the step is taken once, by time-stepping
+    world.work.time_stepping_switched = 1;
     return step_by_time_stepping(world, t0, dt, events);
 }
 

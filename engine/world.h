@@ -70,6 +70,10 @@ struct WorkCounters {
     // resting_method automatic: the index of the first step taken by
     // time-stepping (steps before it were events), or -1 while events carry the scene.
     long long time_stepping_from_step = -1;
+    // 1 when automatic switched from events to time-stepping (at any step,
+    // the first included), 0 when it time-stepped from the start by its rule
+    // for piles (starts_in_time_stepping) or never switched.
+    long long time_stepping_switched = 0;
     // 1 when that switch was made because a pair could pass through each other
     // within the step (world.cpp, could_pass_through), 0 when events failed.
     long long time_stepping_for_speed = 0;

@@ -591,4 +591,19 @@ TEST_CASE("auto takes time-stepping for a step in which a pair could pass throug
     CHECK(o.err.find('\n') == o.err.size() - 1); // once
     CHECK(has(o.err, "could pass through each other within one step"));
     CHECK(has(o.err, R"(set "ccd": true to keep the event model)"));
+
+    // Started 0.15 m above the plate, within the 0.34 m the first step can
+    // close: the switch is that first step, and is noted as any other.
+    std::string near = slurp(scene);
+    const std::string start = R"("position":[0,2.15])";
+    near.replace(near.find(start), start.size(), R"("position":[0,0.2])");
+    spit(scene, near);
+    const Outcome first = run_tool({"run", scene.string(), "--out", "-"});
+    INFO(first.err);
+    CHECK(first.exit_code == 0);
+    CHECK(first.err.rfind("note: " + scene.string() +
+                              R"(: "resting_method": "auto" switched from events to )"
+                              R"(time-stepping at t = 0 s, where two bodies could pass through)",
+                          0) == 0);
+    CHECK(first.err.find('\n') == first.err.size() - 1); // once
 }

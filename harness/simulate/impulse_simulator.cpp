@@ -85,10 +85,11 @@ class ImpulseSimulator final : public Simulator {
     void step(double t0, double dt) override {
         const bool time_stepping_before = world_.work.time_stepping_from_step >= 0;
         const std::optional<StepError> error = impulse::step(world_, t0, dt, events_);
-        // From the first step is the engine's rule for a pile (docs/engine.md),
-        // not a switch: only a switch after event steps is noted, and only
-        // when the step it redid went on (a failure is the one sentence then).
-        if (!error && !time_stepping_before && world_.work.time_stepping_from_step > 0 &&
+        // From the first step by the engine's rule for a pile (docs/engine.md)
+        // is not a switch; a switch is noted at whatever step it happens, the
+        // first included, when the step it redid went on (a failure is the one
+        // sentence then).
+        if (!error && !time_stepping_before && world_.work.time_stepping_switched != 0 &&
             scene_.solver.resting_method == RestingMethod::automatic) {
             note_switch(t0);
         }
