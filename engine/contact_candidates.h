@@ -13,6 +13,13 @@ namespace impulse {
 // rotation can carry it (a circle's surface turns into itself: 0).
 double rotation_radius(const Shape& shape);
 
+// How far turning by angle_change (radians, either sign) can carry a point of
+// the shape: the chord 2 R sin(|angle_change| / 2), bounded by R |angle_change|
+// and by the diameter 2 R, whichever is smaller. The diameter bound keeps a
+// body spinning many turns within a step (a rod at 3000 rad/s) from reaching
+// metres away, which it cannot (docs/engine.md, "Dense contact").
+double turning_reach(const Shape& shape, double angle_change);
+
 // At the bodies' current states (x_k, v_k) and step h: fills s.poses,
 // s.reach, s.boxes, s.pairs (sorted by (a, b)), s.points and s.feature (in
 // (a, b, k) order) and s.links (one per point). Pairs come from a uniform grid

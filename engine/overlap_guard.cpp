@@ -410,9 +410,8 @@ double moved_past_reach(const World& world, const TimeSteppingScratch& s) {
         }
         const BodyState& now = world.bodies[b].state;
         const BodyState& then = s.paired_at[b];
-        const double moved =
-            length(now.position - then.position) +
-            rotation_radius(world.bodies[b].shape) * std::abs(now.angle - then.angle);
+        const double moved = length(now.position - then.position) +
+                             turning_reach(world.bodies[b].shape, now.angle - then.angle);
         beyond = std::max(beyond, moved - s.reach[b]);
     }
     return beyond;

@@ -327,8 +327,7 @@ bool TimeStep::outran_reach() {
     for (const int i : s_.islands.bodies) {
         const std::size_t b = static_cast<std::size_t>(i);
         const BodyState& now = world_.bodies[b].state;
-        const double turn =
-            rotation_radius(world_.bodies[b].shape) * std::abs(now.angle - s_.start[b].angle);
+        const double turn = turning_reach(world_.bodies[b].shape, now.angle - s_.start[b].angle);
         if (length(now.position - s_.start[b].position) + turn > s_.reach[b]) {
             s_.outran.push_back(i);
             s_.is_outran[b] = 1;
@@ -340,9 +339,9 @@ bool TimeStep::outran_reach() {
         if (meets_unheld(world_, i, s_.outran, s_.swept, s_.is_outran, s_)) {
             const std::size_t b = static_cast<std::size_t>(i);
             const BodyState& now = world_.bodies[b].state;
-            s_.reach_floor[b] = 2.0 * (length(now.position - s_.start[b].position) +
-                                       rotation_radius(world_.bodies[b].shape) *
-                                           std::abs(now.angle - s_.start[b].angle));
+            s_.reach_floor[b] =
+                2.0 * (length(now.position - s_.start[b].position) +
+                       turning_reach(world_.bodies[b].shape, now.angle - s_.start[b].angle));
             retry = true;
         }
     }
