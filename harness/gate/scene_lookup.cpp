@@ -4,11 +4,13 @@
 #include "input_error.h"
 #include "scene_names.h"
 #include "strict_json.h"
+#include "trajectory.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 namespace impulse::harness {
 
@@ -38,7 +40,29 @@ void refuse_case_collisions(const std::vector<std::string>& scene_paths) {
     }
 }
 
-// The .json files directly in `dir` whose names (lower case) are not in `names`.
+// Whether `path` is a regular file (not a link) that begins as a trajectory
+// does: its first member "schema": "impulse/trajectory@1" (every golden is
+// written so, docs/formats.md). Anything else in a goldens folder (a scene
+// put there, a package.json) is not a golden, and --prune leaves it alone.
+bool is_trajectory_file(const fs::path& path) {
+    std::error_code error;
+    if (fs::symlink_status(path, error).type() != fs::file_type::regular) {
+        return false;
+    }
+    std::ifstream in(path, std::ios::binary);
+    std::string head(256, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    std::string compact;
+    for (const char c : head) {
+        if (c != ' ' && c != '\n' && c != '\r' && c != '\t') {
+            compact += c;
+        }
+    }
+    return compact.rfind(std::string(R"({"schema":")") + trajectory_schema + "\"", 0) == 0;
+}
+
+// The goldens directly in `dir` whose names (lower case) are not in `names`.
 void add_unreferenced(const std::string& dir, const std::vector<std::string>& names,
                       std::vector<std::string>& unreferenced) {
     std::error_code error;
@@ -48,7 +72,8 @@ void add_unreferenced(const std::string& dir, const std::vector<std::string>& na
     for (fs::directory_iterator it(dir, error), end; !error && it != end; it.increment(error)) {
         const std::string name = lower_case(it->path().stem().string());
         if (it->path().extension() == ".json" &&
-            std::find(names.begin(), names.end(), name) == names.end()) {
+            std::find(names.begin(), names.end(), name) == names.end() &&
+            is_trajectory_file(it->path())) {
             unreferenced.push_back(it->path().string());
         }
     }

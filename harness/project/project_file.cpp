@@ -236,6 +236,61 @@ void refuse_unknown_skips(const Project& project, const std::vector<std::string>
     }
 }
 
+// The folder a path of the project names on disk, through any symlink.
+fs::path resolved(const fs::path& path) {
+    std::error_code error;
+    const fs::path canonical = fs::weakly_canonical(path, error);
+    return error ? fs::absolute(path, error).lexically_normal() : canonical;
+}
+
+// The checks read_goldens makes on the text, made again on the disk: a
+// goldens folder that is a symlink (or lies below one) to the project's own
+// folder, to a scenes folder or out of the project would let bless overwrite
+// scene files and --prune delete the project file (an outside review did
+// both), whatever the text says.
+void refuse_goldens_resolving_elsewhere(const Project& project) {
+    const fs::path root = resolved(project.root);
+    std::vector<fs::path> scene_folders;
+    for (const std::string& entry : project.scenes) {
+        scene_folders.push_back(resolved(fs::path(project.root) / folder_of(entry)));
+    }
+    std::vector<std::string> folders{goldens_dir(project)};
+    if (project.engines.size() > 1) {
+        for (const EngineSpec& engine : project.engines) {
+            folders.push_back(golden_folder(project, engine));
+        }
+    }
+    for (const std::string& folder : folders) {
+        const fs::path where = resolved(folder);
+        const fs::path inside = where.lexically_relative(root);
+        std::string problem;
+        if (inside.empty() || inside == "." || *inside.begin() == "..") {
+            problem = "resolves on disk to " + printable_path(where.string()) +
+                      (inside == "." ? ", the project's own folder (through a symbolic link): "
+                                       "goldens need a folder of their own below it"
+                                     : ", outside the project's folder (through a symbolic "
+                                       "link): bless writes only below the project's folder");
+        }
+        for (std::size_t i = 0; problem.empty() && i < scene_folders.size(); ++i) {
+            if (where == scene_folders[i]) {
+                problem = "resolves on disk to " + printable_path(where.string()) +
+                          ", the folder of scenes[" + std::to_string(i) +
+                          "] (through a symbolic link): a golden NAME.json would overwrite its "
+                          "scene NAME.json";
+            }
+        }
+        if (!problem.empty()) {
+            const bool top = folder == folders.front();
+            throw InputError(project.file, "goldens",
+                             (top ? "\"" + project.goldens + "\" "
+                                  : "\"" +
+                                        fs::path(folder).lexically_relative(project.root).string() +
+                                        "\" (an engine's goldens) ") +
+                                 problem);
+        }
+    }
+}
+
 } // namespace
 
 Project parse_project(const std::string& text, const std::string& file, const std::string& root) {
@@ -255,6 +310,7 @@ Project load_project(const std::string& file) {
     // Every verb, even one that names its scene by path, refuses a project
     // whose scenes entry matches nothing: the mistake is said where it is made.
     refuse_unknown_skips(project, project_scenes(project));
+    refuse_goldens_resolving_elsewhere(project);
     return project;
 }
 
