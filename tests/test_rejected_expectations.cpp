@@ -1,6 +1,7 @@
 // Scene loading, each expectation kind's rejected inputs (docs/formats.md,
 // "Expectations"): one case per input, each checked for the file name, the
 // exact JSON path and the reason (support/scene_text.h).
+#include "exact_answers.h"
 #include "input_error.h"
 #include "scene.h"
 #include "support/scene_text.h"
@@ -99,6 +100,69 @@ TEST_CASE("rejected drop expectations", "[scene]") {
             "the drop formula needs a gap between 'ball' and the static ground at t = 0 wider "
             "than solver.contact_tolerance (1e-09 m), within which the two count as touching "
             "and never collide, but it is 5");
+    }
+    SECTION("the ground is what the body falls onto, not a roof or a wall nearer to it") {
+        // Ground top at y = 0, ball of radius 0.5 at y = 2.5: h0 = 2 m. A roof
+        // 0.9 m above it and a wall 0.1 m beside it are nearer, but a body
+        // falling straight down never meets them (an outside review found the
+        // formula taking either as the ground: first impact at 0.43 s or
+        // 0.14 s instead of sqrt(2 h0 / g) = 0.639 s).
+        const std::string bodies =
+            R"([{"name": "ground", "static": true, "shape": {"box": [50, 0.5]},
+                 "position": [0, -0.5]},
+                {"name": "roof", "static": true, "shape": {"box": [5, 0.5]},
+                 "position": [0, 4.4]},
+                {"name": "wall", "static": true, "shape": {"box": [0.5, 5]},
+                 "position": [1.1, 5]},
+                {"name": "ball", "shape": {"circle": 0.5}, "position": [0, 2.5]}])";
+        const impulse::harness::Scene scene =
+            impulse::harness::parse_scene(expecting(drop(R"("ball")"), bodies), test_file);
+        const auto landing = impulse::harness::landing_below(scene, scene.bodies[3]);
+        REQUIRE(landing);
+        CHECK(landing->gap == 2.0);
+        CHECK(scene.bodies[static_cast<std::size_t>(landing->ground)].name == "ground");
+    }
+    SECTION("ground below that is sloped") {
+        require_rejected(
+            expecting(drop(R"("ball")"),
+                      R"([{"name": "ground", "static": true, "shape": {"box": [50, 0.5]},
+                           "position": [0, -0.5], "angle": 0.1},
+                          {"name": "ball", "shape": {"circle": 0.5}, "position": [0, 3]}])"),
+            "expectations[0].body",
+            "the drop formula needs 'ball' to land on a level surface, but moved straight down "
+            "it meets 'ground' where the contact normal is (");
+    }
+    SECTION("a ball over the corner of a ledge") {
+        // The ledge's top right corner is at x = -0.3, under the ball's left
+        // half: the ball lands on the corner and leaves along the line of centres.
+        require_rejected(expecting(drop(R"("ball")"),
+                                   R"([{"name": "ledge", "static": true, "shape": {"box": [1, 0.5]},
+                           "position": [-1.3, -0.5]},
+                          {"name": "ball", "shape": {"circle": 0.5}, "position": [0, 3]}])"),
+                         "expectations[0].body",
+                         "to land on a level surface, but moved straight down it "
+                         "meets 'ledge' where the contact normal is (");
+    }
+    SECTION("a box landing flat on a ledge narrower than it") {
+        require_rejected(
+            expecting(drop(R"("box")"),
+                      R"([{"name": "ledge", "static": true, "shape": {"box": [0.2, 0.5]},
+                           "position": [0.4, -0.5]},
+                          {"name": "box", "shape": {"box": [0.5, 0.5]}, "position": [0, 3]}])",
+                      R"("solver": {"contacts": "simultaneous"},)"),
+            "expectations[0].body",
+            "the drop formula needs the ground's impulse on 'box' at its centre, x = 0, but moved "
+            "straight down it meets 'ledge' at x = 0.3");
+    }
+    SECTION("nothing static below") {
+        require_rejected(
+            expecting(drop(R"("ball")"),
+                      R"([{"name": "ground", "static": true, "shape": {"box": [1, 0.5]},
+                           "position": [5, -0.5]},
+                          {"name": "ball", "shape": {"circle": 0.5}, "position": [0, 3]}])"),
+            "expectations[0].body",
+            "needs static ground for 'ball' to fall on, but moved straight down it meets no "
+            "static body");
     }
     SECTION("no ground") {
         require_rejected(

@@ -1,6 +1,7 @@
 // The exact answers of docs/physics.md and when they apply (see exact_answers.h).
 #include "exact_answers.h"
 
+#include "broad_phase.h"
 #include "manifold.h"
 #include "rotation.h"
 #include "text.h"
@@ -49,13 +50,20 @@ std::optional<Refusal> gravity_refusal(const Scene& scene, const std::string& fo
 
 std::optional<Refusal> gap_refusal(const Scene& scene, const SceneBody& body,
                                    const std::string& formula) {
-    const std::optional<double> gap = gap_to_static_ground(scene, body);
-    if (!gap) {
-        return refuse(Refusal::Where::body, formula + " needs static ground for " +
-                                                single_quoted(body.name) +
-                                                " to fall on, but every body is dynamic");
+    const std::optional<Landing> landing = landing_below(scene, body);
+    if (!landing) {
+        const bool any_static = std::any_of(scene.bodies.begin(), scene.bodies.end(),
+                                            [](const SceneBody& b) { return b.is_static; });
+        return refuse(Refusal::Where::body,
+                      formula + " needs static ground for " + single_quoted(body.name) +
+                          " to fall on, but " +
+                          (any_static ? "moved straight down it meets no static body"
+                                      : "every body is dynamic"));
     }
-    if (!(*gap > 0.0)) {
+    const double gap = landing->gap;
+    const std::string ground =
+        single_quoted(scene.bodies[static_cast<std::size_t>(landing->ground)].name);
+    if (!(gap > 0.0)) {
         return refuse(Refusal::Where::body, formula + " needs a gap between " +
                                                 single_quoted(body.name) +
                                                 " and the static ground at t = 0, but it "
@@ -64,16 +72,49 @@ std::optional<Refusal> gap_refusal(const Scene& scene, const SceneBody& body,
     // Within contact_tolerance the engine counts the pair as touching: it
     // never collides, so the formula's impacts never come.
     const double tolerance = scene.solver.contact_tolerance;
-    if (!(*gap > tolerance)) {
+    if (!(gap > tolerance)) {
         return refuse(Refusal::Where::body,
                       formula + " needs a gap between " + single_quoted(body.name) +
                           " and the static ground at t = 0 wider than solver.contact_tolerance (" +
                           number_text(tolerance) +
                           " m), within which the two count as touching "
                           "and never collide, but it is " +
-                          number_text(*gap) + " m; raise the body or lower the tolerance");
+                          number_text(gap) + " m; raise the body or lower the tolerance");
+    }
+    // The formulas bounce the body straight back up: the surface it lands on
+    // must be level there, and for a body free to turn the impulse must pass
+    // below its centre (a ledge narrower than a flat landing, or its corner,
+    // would send it off sideways or spinning).
+    if (!(std::abs(landing->normal.x) <= parallel_tolerance && landing->normal.y > 0.0)) {
+        return refuse(Refusal::Where::body,
+                      formula + " needs " + single_quoted(body.name) +
+                          " to land on a level surface, but moved straight down it meets " +
+                          ground + " where the contact normal is " + vec2_text(landing->normal));
     }
     return std::nullopt;
+}
+
+// For a polygon free to turn, where the ground's impulse acts decides the
+// spin: the landing's contact must be at `x` (its centre for a drop, its
+// lowest corner for a corner impact), which a ledge narrower than the body,
+// or one it meets on its own corner, would move.
+std::optional<Refusal> landing_point_refusal(const Scene& scene, const SceneBody& body,
+                                             const std::string& formula, double x,
+                                             const std::string& what) {
+    const std::optional<Landing> landing = landing_below(scene, body);
+    if (!landing || body.shape.type != ShapeType::polygon || !body.rotation ||
+        std::abs(landing->point.x - x) <= level_corners * (1.0 + std::abs(x))) {
+        return std::nullopt;
+    }
+    const std::string ground =
+        single_quoted(scene.bodies[static_cast<std::size_t>(landing->ground)].name);
+    return refuse(Refusal::Where::body, formula + " needs the ground's impulse on " +
+                                            single_quoted(body.name) + " at " + what +
+                                            ", x = " + number_text(x) +
+                                            ", but moved straight down it "
+                                            "meets " +
+                                            ground + " at x = " + number_text(landing->point.x) +
+                                            " (a ledge narrower than the body, or its edge)");
 }
 
 } // namespace
@@ -84,16 +125,67 @@ double gravity_magnitude(const Scene& scene) {
     return -scene.gravity.y;
 }
 
-std::optional<double> gap_to_static_ground(const Scene& scene, const SceneBody& body) {
-    std::optional<double> gap;
-    for (const SceneBody& ground : scene.bodies) {
-        if (ground.is_static) {
-            const double g = separation(body.shape, initial_transform(body), ground.shape,
-                                        initial_transform(ground));
-            gap = gap ? std::min(*gap, g) : g;
+namespace {
+
+// How far `body`, moved straight down, falls before it touches `ground`, with
+// the contact there; empty when it passes beside it. Conservative advancement:
+// a signed gap (never more than the distance) moved at a time never passes
+// the first touch, and one move is exact against a level surface below.
+std::optional<Landing> fall_onto(const SceneBody& body, const SceneBody& ground) {
+    const Transform xg = initial_transform(ground);
+    const Aabb below = aabb_of(ground.shape, xg, 0.0);
+    const Aabb falling = aabb_of(body.shape, initial_transform(body), 0.0);
+    if (falling.upper.x < below.lower.x || below.upper.x < falling.lower.x ||
+        falling.upper.y < below.lower.y) {
+        return std::nullopt; // beside it, or wholly below it
+    }
+    const double size = std::max(falling.upper.x - falling.lower.x, below.upper.x - below.lower.x) +
+                        std::abs(body.position.y) + std::abs(ground.position.y);
+    Transform xb = initial_transform(body);
+    double fallen = 0.0;
+    double gap = separation(body.shape, xb, ground.shape, xg);
+    for (int k = 0; k < 10000 && gap > 1e-13 * size; ++k) {
+        fallen += gap;
+        xb.p.y = body.position.y - fallen;
+        if (falling.upper.y - fallen < below.lower.y) {
+            return std::nullopt; // slid past it
+        }
+        gap = separation(body.shape, xb, ground.shape, xg);
+    }
+    if (fallen == 0.0) {
+        fallen = gap; // touching or overlapping at t = 0: the signed gap
+    }
+    const Manifold m =
+        collide(body.shape, xb, ground.shape, xg, 1e-9 * size, VertexNormal::reference_face);
+    Landing landing{fallen, -1, m.normal, {}};
+    for (int i = 0; i < m.point_count; ++i) {
+        landing.point =
+            landing.point + m.points[static_cast<std::size_t>(i)].point * (1.0 / m.point_count);
+    }
+    return landing;
+}
+
+} // namespace
+
+std::optional<Landing> landing_below(const Scene& scene, const SceneBody& body) {
+    std::optional<Landing> first;
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+        const SceneBody& ground = scene.bodies[i];
+        if (!ground.is_static) {
+            continue;
+        }
+        std::optional<Landing> landing = fall_onto(body, ground);
+        if (landing && (!first || landing->gap < first->gap)) {
+            landing->ground = static_cast<int>(i);
+            first = landing;
         }
     }
-    return gap;
+    return first;
+}
+
+std::optional<double> gap_to_static_ground(const Scene& scene, const SceneBody& body) {
+    const std::optional<Landing> landing = landing_below(scene, body);
+    return landing ? std::optional<double>(landing->gap) : std::nullopt;
 }
 
 std::vector<Vec2> world_vertices(const SceneBody& body) {
@@ -181,7 +273,10 @@ std::optional<Refusal> drop_refusal(const Scene& scene, const SceneBody& body,
                           "its centre nor (with \"contacts\": \"simultaneous\") flat and "
                           "centred; give it \"rotation\": false");
     }
-    return gap_refusal(scene, body, formula);
+    if (std::optional<Refusal> gap = gap_refusal(scene, body, formula)) {
+        return gap;
+    }
+    return landing_point_refusal(scene, body, formula, body.position.x, "its centre");
 }
 
 std::optional<Refusal> corner_impact_refusal(const Scene& scene, const SceneBody& body,
@@ -216,6 +311,13 @@ std::optional<Refusal> corner_impact_refusal(const Scene& scene, const SceneBody
     }
     if (std::optional<Refusal> gap = gap_refusal(scene, body, formula)) {
         return gap;
+    }
+    const std::vector<Vec2> corners = world_vertices(body);
+    const Vec2 lowest =
+        *std::min_element(corners.begin(), corners.end(), [](Vec2 a, Vec2 b) { return a.y < b.y; });
+    if (std::optional<Refusal> point =
+            landing_point_refusal(scene, body, formula, lowest.x, "its lowest corner")) {
+        return point;
     }
     if (scene.gravity.y == 0.0 && !(body.velocity.y < 0.0)) {
         return refuse(Refusal::Where::body, formula +

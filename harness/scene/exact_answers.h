@@ -31,8 +31,20 @@ inline constexpr double parallel_tolerance = 1e-9;
 // g of gravity (0, -g).
 double gravity_magnitude(const Scene& scene);
 
-// The gap h0 between a body and the static ground below it at t = 0: the
-// smallest separation from any static body. Empty when there is none.
+// Where a body moved straight down from its pose at t = 0 first touches a
+// static body: how far it falls (h0; the signed gap when it touches or
+// overlaps one at t = 0), which static body (index into scene.bodies), and
+// the contact's normal and mean point there. Empty when nothing static lies
+// below it. A roof above or a wall beside is never the ground.
+struct Landing {
+    double gap = 0.0;
+    int ground = -1;
+    Vec2 normal;
+    Vec2 point;
+};
+std::optional<Landing> landing_below(const Scene& scene, const SceneBody& body);
+
+// The gap h0 of landing_below. Empty when nothing static lies below the body.
 std::optional<double> gap_to_static_ground(const Scene& scene, const SceneBody& body);
 
 // A polygon body's vertices in the world at t = 0.
