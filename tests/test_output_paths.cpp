@@ -17,6 +17,7 @@
 #include "support/path_state.h"
 #include "support/roots.h"
 #include "support/tool.h"
+#include "support/tool_in_folder.h"
 #include "support/utf8.h"
 
 #include <catch2/catch.hpp>
@@ -460,4 +461,30 @@ TEST_CASE("An empty or over-long output path is refused before the work, the oth
     check_refused(run_tool({"check", "--root", root.string(), "--report", ""}), "--report",
                   "is empty; give a folder");
     check_refused(run_tool({"box2d", scene, "--out", ""}), "--out", "is empty; give a folder");
+}
+
+// Two outputs of one verb on one file: the second would replace the first,
+// however the path is spelt (an outside review lost a trajectory to
+// `--out a.json --json ./a.json`).
+TEST_CASE("Two outputs naming one file are refused before the run, however spelt",
+          "[unit][output-paths]") {
+    const TempDir dir;
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
+    const std::string scene = (root / "harness" / "scenes" / "drop-box.json").string();
+    fs::create_directories(dir.dir / "sub");
+    const fs::path file = dir.dir / "a.json";
+    spit(file, "old bytes");
+    for (const std::string& other : {std::string("./a.json"), std::string(".//a.json"),
+                                     std::string("sub/../a.json"), file.string()}) {
+        INFO(other);
+        const Outcome run =
+            run_tool_in(dir.dir, {"run", scene, "--out", "a.json", "--json", other});
+        CHECK(run.exit_code == 2);
+        CHECK(run.err.find("--json and --out name the same file") != std::string::npos);
+        const Outcome check = run_tool_in(
+            dir.dir, {"check", "--root", root.string(), "--json", "a.json", "--junit", other});
+        CHECK(check.exit_code == 2);
+        CHECK(check.err.find("--json and --junit name the same file") != std::string::npos);
+        CHECK(state_of(file) == "file old bytes");
+    }
 }

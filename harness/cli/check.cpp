@@ -289,6 +289,10 @@ void check_outputs(const CheckRequest& r) {
     if (r.json && r.junit && is_standard_output(*r.json) && is_standard_output(*r.junit)) {
         throw UsageError("--json and --junit cannot both be standard output (-)");
     }
+    if (r.json && r.junit && same_output_file(*r.json, *r.junit)) {
+        throw UsageError("--json and --junit name the same file, " + *r.junit +
+                         ": one would replace the other");
+    }
     if (r.json) {
         check_output_file("--json", *r.json, r.goldens);
     }

@@ -184,6 +184,10 @@ int conform_verb(const std::vector<std::string>& raw, std::ostream& out, std::os
     if (json && junit && is_standard_output(*json) && is_standard_output(*junit)) {
         throw UsageError("--json and --junit cannot both be standard output");
     }
+    if (json && junit && same_output_file(*json, *junit)) {
+        throw UsageError("--json and --junit name the same file, " + *junit +
+                         ": one would replace the other");
+    }
     for (const auto& [option, path] : {std::pair{"--json", json}, std::pair{"--junit", junit}}) {
         if (path) {
             check_output_file(option, *path, goldens);

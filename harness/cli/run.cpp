@@ -66,10 +66,7 @@ void check_json_file(const std::string& json_out, const std::string& trajectory_
         throw UsageError("--json - and the trajectory cannot both go to standard output: "
                          "give the trajectory a file with --out FILE");
     }
-    std::error_code error;
-    if (!is_standard_output(json_out) && !is_standard_output(trajectory_out) &&
-        std::filesystem::weakly_canonical(json_out, error) ==
-            std::filesystem::weakly_canonical(trajectory_out, error)) {
+    if (same_output_file(json_out, trajectory_out)) {
         throw UsageError("--json and --out name the same file, " + json_out);
     }
     check_output_file("--json", json_out, goldens);

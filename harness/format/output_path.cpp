@@ -42,6 +42,15 @@ fs::path landing_place(const std::string& path) {
     return resolved(p.parent_path().empty() ? fs::path(".") : p.parent_path()) / name;
 }
 
+} // namespace
+
+bool same_output_file(const std::string& a, const std::string& b) {
+    return !is_standard_output(a) && !is_standard_output(b) &&
+           landing_place(a).lexically_normal() == landing_place(b).lexically_normal();
+}
+
+namespace {
+
 // `inner` is `folder` or lies inside it, component by component.
 bool is_within(const fs::path& inner, const fs::path& folder) {
     auto i = inner.begin();

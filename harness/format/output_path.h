@@ -34,6 +34,10 @@ void check_output_file(const std::string& option, const std::string& path,
 void refuse_input_as_output(const std::string& option, const std::string& path,
                             const std::vector<std::string>& inputs);
 
+// Whether two output paths land on the same file (neither "-"): their
+// folders resolved, so "a.json", "./a.json" and "sub/../a.json" are one file.
+bool same_output_file(const std::string& a, const std::string& b);
+
 // The same for a folder that receives several files (check --report, box2d
 // --out): it must not be, or be inside, a protected or goldens folder, must be a folder
 // if it exists, and cannot be "-".
