@@ -231,6 +231,7 @@ std::optional<StepError> step_automatic(World& world, double t0, double dt,
 
 std::optional<StepError> step(World& world, double t0, double dt,
                               std::vector<CollisionEvent>& events) {
+    world.step_dt = dt;
     if (!world.solver.resting) {
         return step_events(world, t0, dt, events);
     }

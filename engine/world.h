@@ -128,6 +128,7 @@ struct World {
     Vec2 gravity;
     double restitution = 1.0; // e
     SolverSettings solver;
+    double step_dt = 0.0; // the step being taken (step() sets it; contact_resting.cpp reads it)
     WorkCounters work;
     std::vector<Transform> scratch_transforms; // reused by the interpenetration test
     LocalScratch local;
