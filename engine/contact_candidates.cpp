@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace impulse {
 
@@ -130,8 +131,20 @@ bool beyond_turning_disc(const World& world, const TimeSteppingScratch& s, int i
     return gap > (s.reach[bi] - turn) + s.reach[bo] + world.solver.contact_tolerance;
 }
 
-// Drops the pairs that beyond_turning_disc shows cannot touch within the step.
+// Drops the pairs that beyond_turning_disc shows cannot touch within the step,
+// and records how far each tested body's centre may then move: an impact
+// within the step can turn spin into speed, and outran_reach (time_stepping.cpp)
+// retakes a step whose centre went further.
 void drop_pairs_beyond_turning(World& world, double h, TimeSteppingScratch& s) {
+    const std::size_t n = world.bodies.size();
+    s.centre_reach.assign(n, std::numeric_limits<double>::infinity());
+    for (std::size_t i = 0; i < n; ++i) {
+        const Body& body = world.bodies[i];
+        const double turn = turning_reach(body.shape, body.state.angular_velocity * h);
+        if (!body.is_static() && turn > 0.5 * rotation_radius(body.shape)) {
+            s.centre_reach[i] = s.reach[i] - turn;
+        }
+    }
     const auto beyond = [&](const CandidatePair& p) {
         return beyond_turning_disc(world, s, p.a, p.b, h) ||
                beyond_turning_disc(world, s, p.b, p.a, h);

@@ -328,7 +328,8 @@ bool TimeStep::outran_reach() {
         const std::size_t b = static_cast<std::size_t>(i);
         const BodyState& now = world_.bodies[b].state;
         const double turn = turning_reach(world_.bodies[b].shape, now.angle - s_.start[b].angle);
-        if (length(now.position - s_.start[b].position) + turn > s_.reach[b]) {
+        const double moved = length(now.position - s_.start[b].position);
+        if (moved + turn > s_.reach[b] || moved > s_.centre_reach[b]) {
             s_.outran.push_back(i);
             s_.is_outran[b] = 1;
             s_.swept[b] = swept_box(world_, b, s_.start[b], turn);

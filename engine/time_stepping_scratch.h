@@ -85,6 +85,10 @@ struct TimeSteppingScratch {
     std::vector<std::pair<int, BodyState>> before_loose;
     std::vector<Transform> poses; // per body, at the configuration being looked at
     std::vector<double> reach;    // per body: how far any of its points moves in the step
+    // Per body: how far its centre may move for the pairs its turning disc
+    // dropped to stay out of reach (contact_candidates.cpp); infinite when
+    // no such test was made. A step that moves it further is retaken.
+    std::vector<double> centre_reach;
     // Per body: its state when s.pairs were found; with s.reach, what the
     // pairs cover (a body within its reach of it meets no body it has no
     // pair with).
