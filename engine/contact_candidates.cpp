@@ -108,33 +108,30 @@ void box_body(const World& world, std::size_t i, double grow, TimeSteppingScratc
 // though its reach (which counts the turning of its farthest point toward
 // every direction at once) says it might: the body lies within the disc of
 // radius R about its centre at every instant, and that centre moves at most
-// its reach less the turning part; a disc that far from the other body, grown
-// by the other's reach, cannot touch it. Tested only for bodies turning more
-// than half a radian within the step (the bound is then much tighter than the
-// reach, and elsewhere it costs a query for little): a rod spinning in place
-// at 100 rad/s took an impact from a wall it could never reach, its linear
-// rows predicting its tip would close 0.6 m within the step.
-bool beyond_turning_disc(const World& world, const TimeSteppingScratch& s, int i, int other,
-                         double h) {
+// s.centre_reach[i] (its reach less the turning part); a disc that far from
+// the other body, grown by the other's reach, cannot touch it. A rod spinning
+// in place at 100 rad/s took an impact from a wall it could never reach, its
+// linear rows predicting its tip would close up to 0.83 m within the step.
+bool beyond_turning_disc(const World& world, const TimeSteppingScratch& s, int i, int other) {
     const std::size_t bi = static_cast<std::size_t>(i);
-    const Body& body = world.bodies[bi];
-    const double r = rotation_radius(body.shape);
-    const double turn = turning_reach(body.shape, body.state.angular_velocity * h);
-    if (body.is_static() || !(turn > 0.5 * r)) {
-        return false;
+    if (s.centre_reach[bi] == std::numeric_limits<double>::infinity()) {
+        return false; // not tested: see drop_pairs_beyond_turning
     }
+    const Shape& shape = world.bodies[bi].shape;
+    const double r = rotation_radius(shape);
     const std::size_t bo = static_cast<std::size_t>(other);
     const Transform centre = s.poses[bi];
-    const double grow = rounding_margin(centre, body.shape, r);
+    const double grow = rounding_margin(centre, shape, r);
     const double gap =
         separation(make_circle(r + grow), centre, world.bodies[bo].shape, s.poses[bo]);
-    return gap > (s.reach[bi] - turn) + s.reach[bo] + world.solver.contact_tolerance;
+    return gap > s.centre_reach[bi] + s.reach[bo] + world.solver.contact_tolerance;
 }
 
-// Drops the pairs that beyond_turning_disc shows cannot touch within the step,
-// and records how far each tested body's centre may then move: an impact
-// within the step can turn spin into speed, and outran_reach (time_stepping.cpp)
-// retakes a step whose centre went further.
+// Drops the pairs that beyond_turning_disc shows cannot touch within the step.
+// Only bodies turning more than half a radian are tested (the disc is then
+// much tighter than the reach; elsewhere it costs a query for little); each
+// records how far its centre may move, which outran_reach (time_stepping.cpp)
+// holds it to: an impact within the step can turn spin into speed.
 void drop_pairs_beyond_turning(World& world, double h, TimeSteppingScratch& s) {
     const std::size_t n = world.bodies.size();
     s.centre_reach.assign(n, std::numeric_limits<double>::infinity());
@@ -146,8 +143,7 @@ void drop_pairs_beyond_turning(World& world, double h, TimeSteppingScratch& s) {
         }
     }
     const auto beyond = [&](const CandidatePair& p) {
-        return beyond_turning_disc(world, s, p.a, p.b, h) ||
-               beyond_turning_disc(world, s, p.b, p.a, h);
+        return beyond_turning_disc(world, s, p.a, p.b) || beyond_turning_disc(world, s, p.b, p.a);
     };
     s.pairs.erase(std::remove_if(s.pairs.begin(), s.pairs.end(), beyond), s.pairs.end());
 }
