@@ -97,3 +97,39 @@ TEST_CASE("bless --prune deletes unreferenced goldens and leaves other JSON file
     CHECK(fs::exists(goldens / "backup.json"));
     CHECK(fs::exists(goldens / "drop.json"));
 }
+
+TEST_CASE("regen writes no golden when one golden's path cannot be written",
+          "[unit][gate-reliability]") {
+    const TempDir temp;
+    const fs::path dir = starter_project(temp);
+    const fs::path source = IMPULSE_SOURCE_DIR;
+    fs::copy_file(source / "harness" / "scenes" / "head-on.json", dir / "scenes" / "head-on.json");
+    require_exit(run_tool_in(dir, {"bless"}), 0);
+    const fs::path goldens = dir / "goldens";
+    const std::string head_on = slurp(goldens / "head-on.json");
+    // Both scenes edited, so both goldens would change; one path is a folder.
+    for (const char* name : {"drop.json", "head-on.json"}) {
+        std::string text = slurp(dir / "scenes" / name);
+        const std::string key = "\"description\": \"";
+        REQUIRE(text.find(key) != std::string::npos);
+        text.replace(text.find(key), key.size(), key + "edited ");
+        spit(dir / "scenes" / name, text);
+    }
+    fs::remove(goldens / "drop.json");
+    fs::create_directory(goldens / "drop.json");
+
+    const Outcome o = run_tool_in(dir, {"regen"});
+    INFO(o.out << o.err);
+    CHECK(o.exit_code == 2);
+    CHECK(has(o.out, "NOT WRITTEN drop"));
+    CHECK(has(o.out, "held back  head-on"));
+    CHECK(has(o.out, "no golden was written"));
+    CHECK(has(o.err, "drop.json: cannot be written (it is a directory"));
+    CHECK(slurp(goldens / "head-on.json") == head_on);
+
+    const Outcome partial = run_tool_in(dir, {"regen", "--partial"});
+    INFO(partial.out << partial.err);
+    CHECK(partial.exit_code == 2);
+    CHECK(slurp(goldens / "head-on.json") != head_on);
+    CHECK(fs::is_directory(goldens / "drop.json"));
+}

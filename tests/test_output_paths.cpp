@@ -293,7 +293,7 @@ TEST_CASE("check --report refuses a FIFO where a report file goes, and writes no
         run_tool({"check", "drop-box", "--root", root.string(), "--report", report.string()});
     INFO("stdout: " << o.out << "\nstderr: " << o.err);
     CHECK(o.exit_code == 2);
-    CHECK(o.err.find((report / "index.html").string() + ": cannot be written (it is a FIFO") == 0);
+    CHECK(o.err.find((report / "index.html").string() + ": --report: is a FIFO") == 0);
     CHECK(state_of(report) == "folder index.html");
     CHECK(state_of(report / "index.html") == "fifo");
 
@@ -487,4 +487,63 @@ TEST_CASE("Two outputs naming one file are refused before the run, however spelt
         CHECK(check.err.find("--json and --junit name the same file") != std::string::npos);
         CHECK(state_of(file) == "file old bytes");
     }
+}
+
+TEST_CASE("A bad report file is refused before the run: no JUnit or JSON is written",
+          "[unit][output-paths]") {
+    const TempDir dir;
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
+    const fs::path report = dir.dir / "report";
+    fs::create_directories(report / "index.html");
+    const fs::path junit = dir.dir / "j.xml", json = dir.dir / "j.json";
+    const Outcome o = run_tool({"check", "--root", root.string(), "--report", report.string(),
+                                "--junit", junit.string(), "--json", json.string()});
+    INFO("stdout: " << o.out << "\nstderr: " << o.err);
+    CHECK(o.exit_code == 2);
+    CHECK(o.err.find((report / "index.html").string() + ": --report: is a directory") == 0);
+    CHECK(o.out.find("passed") == std::string::npos); // no scene ran
+    CHECK(state_of(junit) == "missing");
+    CHECK(state_of(json) == "missing");
+}
+
+TEST_CASE("--json or --junit naming a file of the --report folder is refused, the file kept",
+          "[unit][output-paths]") {
+    const TempDir dir;
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
+    const fs::path report = dir.dir / "report";
+    fs::create_directories(report);
+    spit(report / "summary.md", "old summary");
+    for (const std::string& option : {std::string("--json"), std::string("--junit")}) {
+        INFO(option);
+        const Outcome o = run_tool_in(dir.dir, {"check", "--root", root.string(), "--report",
+                                                "report", option, "./report/summary.md"});
+        CHECK(o.exit_code == 2);
+        CHECK(o.err.find(option + " names ./report/summary.md, a file of the --report folder") !=
+              std::string::npos);
+        CHECK(state_of(report) == "folder summary.md");
+        CHECK(state_of(report / "summary.md") == "file old summary");
+    }
+}
+
+TEST_CASE("A failed scene's picture path that is a folder stops check before any output",
+          "[unit][output-paths]") {
+    const TempDir dir;
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
+    // An edited description makes the golden stale: a failed scene, drawn.
+    const fs::path scene = root / "harness" / "scenes" / "drop-box.json";
+    std::string text = slurp(scene);
+    const std::string key = "\"description\": \"";
+    text.replace(text.find(key), key.size(), key + "edited ");
+    spit(scene, text);
+    const fs::path report = dir.dir / "report";
+    fs::create_directories(report / "drop-box.svg");
+    const fs::path json = dir.dir / "j.json";
+    const Outcome o = run_tool({"check", "--root", root.string(), "--report", report.string(),
+                                "--json", json.string()});
+    INFO("stdout: " << o.out << "\nstderr: " << o.err);
+    CHECK(o.exit_code == 2);
+    CHECK(o.err.find((report / "drop-box.svg").string() + ": cannot be written (it is a directory") !=
+          std::string::npos);
+    CHECK(state_of(json) == "missing");
+    CHECK(state_of(report) == "folder drop-box.svg");
 }

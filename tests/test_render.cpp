@@ -408,7 +408,7 @@ TEST_CASE("write_report names the path it cannot create", "[render]") {
     const std::string dir = (file / "report").string();
     CHECK_THROWS_AS(write_report(dir, sample_checks()), InputError);
     try {
-        write_report(dir, {});
+        write_report(dir, std::vector<SceneCheck>{});
     } catch (const InputError& e) {
         CHECK(std::string(e.what()).find(dir) != std::string::npos);
     }

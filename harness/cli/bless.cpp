@@ -145,6 +145,7 @@ struct Preparation {
     std::vector<std::string> refusing;
     std::vector<std::string> failing;       // the broken ones among them
     std::vector<std::string> never_blessed; // those among them with no golden yet
+    std::vector<std::string> unwritable;    // those whose golden's path cannot be written
 };
 
 // Notes a scene that holds the writing back, and whether it has a golden:
@@ -210,9 +211,12 @@ bool would_write(const Blessing& b) {
 // "a refuses to be blessed", "b could not be loaded or run (its error above)", or both
 // joined: a scene whose engine crashed was not refused by its expectations.
 std::string why_held(const Preparation& p) {
+    const auto among = [](const std::vector<std::string>& names, const std::string& name) {
+        return std::find(names.begin(), names.end(), name) != names.end();
+    };
     std::vector<std::string> refused;
     for (const std::string& name : p.refusing) {
-        if (std::find(p.failing.begin(), p.failing.end(), name) == p.failing.end()) {
+        if (!among(p.failing, name) && !among(p.unwritable, name)) {
             refused.push_back(name);
         }
     }
@@ -224,6 +228,10 @@ std::string why_held(const Preparation& p) {
         why += (why.empty() ? "" : " and ") + listed(p.failing) + " could not be loaded or run (" +
                (p.failing.size() == 1 ? "its error" : "their errors") + " above)";
     }
+    if (!p.unwritable.empty()) {
+        why += std::string(why.empty() ? "" : " and ") + "the golden of " + listed(p.unwritable) +
+               " cannot be written (NOT WRITTEN above)";
+    }
     return why;
 }
 
@@ -234,7 +242,8 @@ std::string partial_note(const Preparation& p, int written) {
     std::vector<std::string> stale;
     for (const std::string& name : p.refusing) {
         if (std::find(p.never_blessed.begin(), p.never_blessed.end(), name) ==
-            p.never_blessed.end()) {
+                p.never_blessed.end() &&
+            std::find(p.unwritable.begin(), p.unwritable.end(), name) == p.unwritable.end()) {
             stale.push_back(name);
         }
     }
@@ -261,6 +270,21 @@ std::string partial_note(const Preparation& p, int written) {
 // not given, none of them: a goldens folder half from one engine and half
 // from another would pass the gate for the wrong reason.
 BlessCounts write_prepared(Preparation& p, bool partial, std::ostream& out, std::ostream& err) {
+    // A golden whose path cannot take it (a folder there, a read-only
+    // folder) holds the others back as a refusing scene does: found before
+    // any is written, so the goldens are never half from the new motion.
+    for (Prepared& item : p.ready) {
+        if (would_write(item.blessing)) {
+            try {
+                check_golden_writable(item.blessing);
+            } catch (const InputError& e) {
+                item.blessing.outcome = Blessing::Outcome::unwritten;
+                item.blessing.summary = e.what();
+                p.refusing.push_back(item.name);
+                p.unwritable.push_back(item.name);
+            }
+        }
+    }
     BlessCounts counts;
     counts.broken = static_cast<int>(p.failing.size());
     const bool hold = !p.refusing.empty() && !partial;

@@ -2,6 +2,7 @@
 #include "check_json.h"
 #include "check_outcome.h"
 #include "check_table.h"
+#include "atomic_file.h"
 #include "cli.h"
 #include "comparison_run.h"
 #include "gate.h"
@@ -283,6 +284,16 @@ CheckOptions gate_options(const Arguments& a) {
     return options;
 }
 
+// A report file that --json or --junit also names: one would replace the other.
+void refuse_report_clash(const CheckRequest& r, const std::string& report_file) {
+    for (const auto& [option, path] : {std::pair{"--json", r.json}, std::pair{"--junit", r.junit}}) {
+        if (path && same_output_file(*path, report_file)) {
+            throw UsageError(std::string(option) + " names " + *path + ", a file of the --report " +
+                             "folder: one would replace the other");
+        }
+    }
+}
+
 // Output paths are refused before any scene runs; at most one output is
 // standard output.
 void check_outputs(const CheckRequest& r) {
@@ -301,6 +312,12 @@ void check_outputs(const CheckRequest& r) {
     }
     if (r.report) {
         check_output_folder("--report", *r.report, r.goldens);
+        for (const std::string& file : report_fixed_files(*r.report)) {
+            refuse_report_clash(r, file);
+            if (std::filesystem::is_directory(*r.report)) {
+                check_output_file("--report", file, r.goldens);
+            }
+        }
     }
 }
 
@@ -379,10 +396,20 @@ int print_results(std::ostream& table, const CheckRequest& r, const std::vector<
     return code;
 }
 
-// --junit, --json and --report, each written whole or not at all.
+// --junit, --json and --report, each written whole or not at all; every path
+// of the report (its pictures are known only now) is checked before any
+// output is written, so a refused one leaves the others as they were.
 void write_outputs(const CheckRequest& r, const std::vector<SceneCheck>& checks,
                    const std::optional<ComparisonReport>& comparison, CheckRun run,
                    std::ostream& out, std::ostream& table) {
+    std::vector<std::pair<std::string, std::string>> report;
+    if (r.report) {
+        report = report_files(*r.report, checks);
+        for (const auto& [path, content] : report) {
+            refuse_report_clash(r, path);
+            require_regular_or_missing(path);
+        }
+    }
     if (r.junit) {
         write_output_file("--junit", *r.junit,
                           comparison ? junit_xml(checks, *comparison) : junit_xml(checks),
@@ -393,7 +420,7 @@ void write_outputs(const CheckRequest& r, const std::vector<SceneCheck>& checks,
         write_output_file("--json", *r.json, check_json(checks, run), r.goldens, out);
     }
     if (r.report) {
-        write_report(*r.report, checks);
+        write_report(*r.report, report);
         if (!r.quiet) {
             const std::filesystem::path folder(*r.report);
             table << "report: " << printable_path((folder / "summary.md").string()) << ", "

@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
+#include <unistd.h>
 
 namespace impulse::harness {
 
@@ -385,6 +386,28 @@ Blessing prepare_blessing(const Project& project, const EngineSpec& engine,
     }
     blessing.text = std::move(text);
     return blessing;
+}
+
+void check_golden_writable(const Blessing& blessing) {
+    require_regular_or_missing(blessing.golden_file);
+    // The nearest folder that exists is the one the missing ones are made in.
+    fs::path folder = fs::path(blessing.golden_file).parent_path();
+    std::error_code error;
+    while (!folder.empty() && !fs::exists(fs::symlink_status(folder, error))) {
+        folder = folder.parent_path();
+    }
+    if (folder.empty()) {
+        folder = ".";
+    }
+    if (!fs::is_directory(folder, error)) {
+        throw InputError(blessing.golden_file, "",
+                         "cannot be written (" + printable_path(folder.string()) + " is not a folder)");
+    }
+    if (::access(folder.c_str(), W_OK | X_OK) != 0) {
+        throw InputError(blessing.golden_file, "",
+                         "cannot be written (the folder " + printable_path(folder.string()) +
+                             " takes no new files for this user)");
+    }
 }
 
 void write_blessing(Blessing& blessing) {

@@ -126,5 +126,10 @@ Blessing bless_scene(const GateRoot& root, const std::string& scene_path);
 Blessing prepare_blessing(const Project& project, const EngineSpec& engine,
                           const std::string& scene_path);
 void write_blessing(Blessing& blessing);
+// Throws InputError naming the golden when write_blessing could not write it
+// (something other than a regular file there, a folder on its way that is a
+// file, or one that takes no new files), without writing anything: bless
+// checks every golden it would write first, so the folder is all new or all old.
+void check_golden_writable(const Blessing& blessing);
 
 } // namespace impulse::harness

@@ -22,7 +22,24 @@ std::string lower_first(std::string text) {
 
 } // namespace
 
-void write_report(const std::string& dir, const std::vector<SceneCheck>& checks) {
+std::vector<std::string> report_fixed_files(const std::string& dir) {
+    const std::filesystem::path base(dir);
+    return {(base / "summary.md").string(), (base / "index.html").string()};
+}
+
+std::vector<std::pair<std::string, std::string>>
+report_files(const std::string& dir, const std::vector<SceneCheck>& checks) {
+    const std::filesystem::path base(dir);
+    std::vector<std::pair<std::string, std::string>> files;
+    files.emplace_back((base / "summary.md").string(), summary_markdown(checks));
+    for (const auto& [name, content] : html_report_files(checks)) {
+        files.emplace_back((base / name).string(), content);
+    }
+    return files;
+}
+
+void write_report(const std::string& dir,
+                  const std::vector<std::pair<std::string, std::string>>& files) {
     namespace fs = std::filesystem;
     std::error_code error;
     fs::create_directories(dir, error);
@@ -32,19 +49,17 @@ void write_report(const std::string& dir, const std::vector<SceneCheck>& checks)
     if (!fs::is_directory(dir, error)) {
         throw InputError(dir, "", "cannot hold the report: it is not a directory");
     }
-    const fs::path base(dir);
     // Written only when no path is refused (a link, a FIFO): never half new.
-    std::vector<std::pair<std::string, std::string>> files;
-    files.emplace_back((base / "summary.md").string(), summary_markdown(checks));
-    for (const auto& [name, content] : html_report_files(checks)) {
-        files.emplace_back((base / name).string(), content);
-    }
     for (const auto& [path, content] : files) {
         require_regular_or_missing(path);
     }
     for (const auto& [path, content] : files) {
         write_file_atomically(path, content);
     }
+}
+
+void write_report(const std::string& dir, const std::vector<SceneCheck>& checks) {
+    write_report(dir, report_files(dir, checks));
 }
 
 } // namespace impulse::harness

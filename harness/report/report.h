@@ -8,12 +8,24 @@
 #include "summary.h"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace impulse::harness {
 
-// Writes summary.md, index.html and one SVG per failed scene into dir
-// (created if missing); throws InputError when it cannot.
+// The files every report has, whatever the checks: known before any scene
+// runs, so a verb refuses a bad one (a folder, a link, its own --json) first.
+std::vector<std::string> report_fixed_files(const std::string& dir);
+
+// Every file of the report on these checks, path and content, not written:
+// the caller checks each path against its other outputs before writing any.
+std::vector<std::pair<std::string, std::string>>
+report_files(const std::string& dir, const std::vector<SceneCheck>& checks);
+
+// Writes report_files into dir (created if missing), each path checked before
+// any is written; throws InputError when it cannot.
+void write_report(const std::string& dir,
+                  const std::vector<std::pair<std::string, std::string>>& files);
 void write_report(const std::string& dir, const std::vector<SceneCheck>& checks);
 
 } // namespace impulse::harness
