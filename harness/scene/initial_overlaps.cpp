@@ -72,6 +72,11 @@ constexpr const char* rounding_hint =
     ", no more than the rounding of the positions: with \"resting\": true such a pair counts "
     "as touching";
 
+// What to change for a real overlap: the seed's model has no time of impact
+// for bodies already inside each other.
+constexpr const char* separate_hint =
+    "; move them apart by at least that, so that they start separate or touching";
+
 } // namespace
 
 // The engine resolves collisions as they happen; bodies already interpenetrating
@@ -140,7 +145,7 @@ void reject_initial_overlaps(const Scene& scene) {
                                                           body_reference(scene, first->i) +
                                                           " at t = 0 by " +
                                                           number_text(-first->gap) + " m" +
-                                                          (first->rounding ? rounding_hint : ""));
+                                                          (first->rounding ? rounding_hint : separate_hint));
     }
 }
 
