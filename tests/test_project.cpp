@@ -284,6 +284,10 @@ std::vector<BadProject> bad_projects() {
          "must be true or false, got \"yes\""},
         {"an empty regen", project_with(R"("scenes": ["scenes"], "regen": "")"), "regen",
          "must not be empty"},
+        // A newline would print a forged row of check's table inside a hint.
+        {"a regen of two lines",
+         project_with(R"("scenes": ["scenes"], "regen": "make goldens\n  ok     drop  0.001 s")"),
+         "regen", "holds a control character at byte 12"},
     };
 }
 

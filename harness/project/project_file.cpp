@@ -211,6 +211,16 @@ Project read_project(const Node& top, const std::string& file, const std::string
         if (project.regen.empty()) {
             regen->fail("must not be empty: it is the command hints tell you to run");
         }
+        // Printed inside hints and tables: a newline or an escape sequence
+        // would forge a line of check's table (an outside review's "ok drop").
+        for (std::size_t i = 0; i < project.regen.size(); ++i) {
+            const auto byte = static_cast<unsigned char>(project.regen[i]);
+            if (byte < 0x20 || byte == 0x7f) {
+                regen->fail("holds a control character at byte " + std::to_string(i) +
+                            "; it is printed in hints as one command line, so it must be "
+                            "printable text");
+            }
+        }
     }
     return project;
 }
