@@ -8,6 +8,7 @@
 // run.
 #include "expectations.h"
 #include "run.h"
+#include "run_json.h"
 #include "scene.h"
 #include "support/expectation_results.h"
 #include "support/trajectories.h"
@@ -294,6 +295,10 @@ TEST_CASE("head-on: two hand-built discs meeting along the line of centres", "[e
         const std::vector<ExpectationResult> results = evaluate(head_on_scene, expectation, t);
         REQUIRE(results.size() == 1);
         CHECK(results[0].detail == "the run has no collision between 'a' and 'b'");
+        // Nothing was measured: no "expected 0, got 0" that reads like a pass.
+        CHECK_FALSE(results[0].numeric);
+        CHECK(impulse::harness::expectation_message(results[0]).find("expected") ==
+              std::string::npos);
     }
 }
 

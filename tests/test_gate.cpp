@@ -104,6 +104,20 @@ TEST_CASE("Bless writes goldens once; blessing again changes no byte", "[gate]")
     CHECK(check(root).exit_code == 0);
 }
 
+TEST_CASE("A golden copied from another scene is named as that scene's, not as stale", "[gate]") {
+    CiMode local(false);
+    Root root({"drop-box", "head-on"});
+    REQUIRE(bless(root).exit_code == 0);
+    fs::copy_file(root.golden("head-on"), root.golden("drop-box"),
+                  fs::copy_options::overwrite_existing);
+    const Outcome o = check(root);
+    INFO(o.out << o.err);
+    CHECK(o.exit_code == 1);
+    CHECK(o.out.find("wrong golden: it is of scene 'head-on', not 'drop-box'") !=
+          std::string::npos);
+    CHECK(o.out.find("stale golden") == std::string::npos);
+}
+
 TEST_CASE("Restitution changed in its last digits fails the gate at the first divergent frame",
           "[gate]") {
     CiMode local(false);

@@ -99,6 +99,18 @@ TEST_CASE("init refuses to overwrite either file and writes nothing", "[init-reg
     }
 }
 
+TEST_CASE("init says why scenes/ cannot be made when a dangling link is in its way",
+          "[init-regen]") {
+    const TempDir temp;
+    fs::create_directory_symlink(temp.dir / "nowhere", temp.dir / "scenes");
+    const Outcome o = run_tool_in(temp.dir, {"init"});
+    require_exit(o, 2);
+    CHECK(o.err == "./scenes: cannot be made (a symbolic link to a folder that does not exist is "
+                   "in the way)\n");
+    CHECK(fs::is_symlink(temp.dir / "scenes"));
+    CHECK_FALSE(fs::exists(temp.dir / "impulse.json"));
+}
+
 TEST_CASE("regen from a subfolder regenerates the goldens of the project found upwards",
           "[init-regen]") {
     BlessedProject p;
@@ -130,6 +142,14 @@ TEST_CASE("regen from a subfolder regenerates the goldens of the project found u
     const Outcome here = run_tool_in(sub, {"regen", "--root", "."});
     require_exit(here, 2);
     CHECK(has(here.err, "harness/scenes: no scene folder here"));
+
+    // A --root that is not there, or is a file, is said as such.
+    const Outcome missing = run_tool_in(sub, {"check", "--root", "no-such-folder"});
+    require_exit(missing, 2);
+    CHECK(missing.err == "no-such-folder: --root: does not exist; give the project's folder\n");
+    const Outcome file = run_tool_in(p.dir, {"check", "--root", "impulse.json"});
+    require_exit(file, 2);
+    CHECK(file.err == "impulse.json: --root: is not a folder; give the project's folder\n");
 }
 
 TEST_CASE("regen changes a golden after an intended change and is refused in CI mode",

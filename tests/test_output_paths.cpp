@@ -538,12 +538,12 @@ TEST_CASE("A failed scene's picture path that is a folder stops check before any
     const fs::path report = dir.dir / "report";
     fs::create_directories(report / "drop-box.svg");
     const fs::path json = dir.dir / "j.json";
-    const Outcome o = run_tool({"check", "--root", root.string(), "--report", report.string(),
-                                "--json", json.string()});
+    const Outcome o = run_tool(
+        {"check", "--root", root.string(), "--report", report.string(), "--json", json.string()});
     INFO("stdout: " << o.out << "\nstderr: " << o.err);
     CHECK(o.exit_code == 2);
-    CHECK(o.err.find((report / "drop-box.svg").string() + ": cannot be written (it is a directory") !=
-          std::string::npos);
+    CHECK(o.err.find((report / "drop-box.svg").string() +
+                     ": cannot be written (it is a directory") != std::string::npos);
     CHECK(state_of(json) == "missing");
     CHECK(state_of(report) == "folder drop-box.svg");
 }

@@ -489,7 +489,8 @@ std::string old_rule(const std::vector<Made>& bodies) {
                 return test_file + ": bodies[" + std::to_string(j) + "]: '" + bodies[j].name +
                        "' overlaps bodies[" + std::to_string(i) + "] '" + bodies[i].name +
                        "' at t = 0 by " + shortest(-gap) +
-                       " m; move them apart by at least that, so that they start separate or touching";
+                       " m; move them apart by at least that, so that they start separate or "
+                       "touching";
             }
         }
     }
@@ -523,7 +524,8 @@ TEST_CASE("the overlap sweep names the same first pair as the pairwise rule", "[
             {"name": "c", "shape": {"circle": 1}, "position": [-10, 0]},
             {"name": "d", "shape": {"circle": 1}, "position": [-9.5, 0]}])");
         CHECK(rejection(text) ==
-              test_file + ": bodies[1]: 'b' overlaps bodies[0] 'a' at t = 0 by 1 m"
+              test_file +
+                  ": bodies[1]: 'b' overlaps bodies[0] 'a' at t = 0 by 1 m"
                   "; move them apart by at least that, so that they start separate or touching");
     }
     SECTION("one body over two: the smaller i, though the sweep meets the other first") {
@@ -534,7 +536,8 @@ TEST_CASE("the overlap sweep names the same first pair as the pairwise rule", "[
             {"name": "q", "shape": {"circle": 1}, "position": [-2, 0]},
             {"name": "bar", "shape": {"box": [2.5, 0.5]}}])");
         CHECK(rejection(text) ==
-              test_file + ": bodies[2]: 'bar' overlaps bodies[0] 'p' at t = 0 by 1.5 m"
+              test_file +
+                  ": bodies[2]: 'bar' overlaps bodies[0] 'p' at t = 0 by 1.5 m"
                   "; move them apart by at least that, so that they start separate or touching");
     }
     SECTION("a later pair with a smaller j wins over an earlier-swept larger j") {
@@ -554,7 +557,8 @@ TEST_CASE("the overlap sweep names the same first pair as the pairwise rule", "[
             {"name": "wall", "static": true, "shape": {"box": [0.5, 5]}},
             {"name": "ball", "shape": {"circle": 1}, "position": [3, 1]}])");
         CHECK(rejection(text) ==
-              test_file + ": bodies[2]: 'ball' overlaps bodies[0] 'floor' at t = 0 by 0.5 m"
+              test_file +
+                  ": bodies[2]: 'ball' overlaps bodies[0] 'floor' at t = 0 by 0.5 m"
                   "; move them apart by at least that, so that they start separate or touching");
     }
     SECTION("random crowds of discs and turned boxes, against the pairwise rule") {

@@ -1,8 +1,8 @@
 // `impulse check [SCENE...]`: the gate.
+#include "atomic_file.h"
 #include "check_json.h"
 #include "check_outcome.h"
 #include "check_table.h"
-#include "atomic_file.h"
 #include "cli.h"
 #include "comparison_run.h"
 #include "gate.h"
@@ -93,8 +93,8 @@ not on this machine or failed on a scene.
 
 std::pair<int, int> parse_shard(const std::string& text) {
     const std::size_t slash = text.find('/');
-    if (slash == std::string::npos) {
-        throw UsageError("--shard must be K/N, got '" + text + "'");
+    if (slash == std::string::npos || text.find('/', slash + 1) != std::string::npos) {
+        throw UsageError("--shard must be K/N, two whole numbers and one '/', got '" + text + "'");
     }
     const int k = parse_count("--shard K", text.substr(0, slash), 1);
     const int n = parse_count("--shard N", text.substr(slash + 1), 1);
@@ -286,7 +286,8 @@ CheckOptions gate_options(const Arguments& a) {
 
 // A report file that --json or --junit also names: one would replace the other.
 void refuse_report_clash(const CheckRequest& r, const std::string& report_file) {
-    for (const auto& [option, path] : {std::pair{"--json", r.json}, std::pair{"--junit", r.junit}}) {
+    for (const auto& [option, path] :
+         {std::pair{"--json", r.json}, std::pair{"--junit", r.junit}}) {
         if (path && same_output_file(*path, report_file)) {
             throw UsageError(std::string(option) + " names " + *path + ", a file of the --report " +
                              "folder: one would replace the other");

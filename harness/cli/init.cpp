@@ -154,9 +154,14 @@ int init_verb(const std::vector<std::string>& args, std::ostream& out, std::ostr
         }
     };
     fs::create_directories(dir / "scenes", error);
-    if (error) {
+    if (error || !fs::is_directory(dir / "scenes")) {
+        // A link that leads nowhere is in the way without an error of its own.
+        const std::string why =
+            fs::is_symlink(fs::symlink_status(dir / "scenes"))
+                ? "a symbolic link to a folder that does not exist is in the way"
+                : error.message();
         take_back();
-        throw InputError((dir / "scenes").string(), "", "cannot be made (" + error.message() + ")");
+        throw InputError((dir / "scenes").string(), "", "cannot be made (" + why + ")");
     }
     const std::string name = a.option("--engine").value_or("my-engine");
     try {

@@ -18,6 +18,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
+#include <filesystem>
 #include <optional>
 #include <poll.h>
 #include <spawn.h>
@@ -97,6 +98,11 @@ std::string start_hint(const std::string& program, int code) {
 }
 
 std::string cannot_start(const std::string& program, int code) {
+    std::error_code error;
+    if (code == EACCES && program.find('/') != std::string::npos &&
+        std::filesystem::is_directory(program, error)) {
+        return "cannot start '" + printable_path(program) + "': it is a folder, not a program";
+    }
     return "cannot start '" + printable_path(program) + "': " + std::strerror(code) +
            start_hint(program, code);
 }

@@ -85,9 +85,15 @@ class Checks {
     }
 
     // A check that failed without a number to compare (a missing event or
-    // frame); expected and actual say what was wanted and found when they can.
-    void failure(const std::string& what, const std::string& detail, double expected = 0.0,
-                 double actual = 0.0) {
+    // frame): the detail alone is shown, never "expected 0, got 0" beside it.
+    void failure(const std::string& what, const std::string& detail) {
+        judged(what, false, 0.0, 0.0, detail);
+        out_.back().allowed.reset();
+        out_.back().numeric = false;
+    }
+    // One that failed on a count (impacts wanted and found): both are shown.
+    void failure(const std::string& what, const std::string& detail, double expected,
+                 double actual) {
         judged(what, false, expected, actual, detail);
         out_.back().allowed.reset();
     }

@@ -9,6 +9,7 @@
 #include "number_format.h"
 #include "parallel_check.h"
 #include "scene_names.h"
+#include "text.h"
 
 #include <algorithm>
 #include <chrono>
@@ -138,7 +139,12 @@ void record_verdict(SceneCheck& check, const std::string& regen) {
     const std::string failed = failed_expectations(check.expectations, failed_count);
     std::ostringstream details;
     std::vector<std::string> reasons;
-    if (check.stale) {
+    if (check.stale && check.gold->scene != check.value->scene) {
+        // A golden copied or renamed from another scene: not a change to this one.
+        reasons.push_back("wrong golden: it is of scene " + single_quoted(check.gold->scene) +
+                          ", not " + single_quoted(check.value->scene) + "; run " + regen +
+                          " to record this scene's");
+    } else if (check.stale) {
         reasons.push_back("stale golden: the scene changed since it was blessed; if that was "
                           "intended, run " +
                           regen);
@@ -401,7 +407,8 @@ void check_golden_writable(const Blessing& blessing) {
     }
     if (!fs::is_directory(folder, error)) {
         throw InputError(blessing.golden_file, "",
-                         "cannot be written (" + printable_path(folder.string()) + " is not a folder)");
+                         "cannot be written (" + printable_path(folder.string()) +
+                             " is not a folder)");
     }
     if (::access(folder.c_str(), W_OK | X_OK) != 0) {
         throw InputError(blessing.golden_file, "",

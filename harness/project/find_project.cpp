@@ -1,5 +1,6 @@
 // Finding the project of a verb: --root DIR, or the first impulse.json above
 // the current folder.
+#include "input_error.h"
 #include "project.h"
 
 #include <filesystem>
@@ -28,10 +29,24 @@ std::string shortest(const fs::path& dir, const fs::path& cwd) {
     return relative.string();
 }
 
+// --root names the project's folder: one that is missing or is a file is
+// said as such, not as "no scene folder here" below it.
+void require_root_folder(const std::string& root) {
+    std::error_code error;
+    const fs::file_status status = fs::status(root, error);
+    if (!fs::exists(status)) {
+        throw InputError(root, "--root", "does not exist; give the project's folder");
+    }
+    if (!fs::is_directory(status)) {
+        throw InputError(root, "--root", "is not a folder; give the project's folder");
+    }
+}
+
 } // namespace
 
 Project find_project(const std::optional<std::string>& root_option) {
     if (root_option) {
+        require_root_folder(*root_option);
         const fs::path file = fs::path(*root_option) / project_file_name;
         if (entry_exists(file)) {
             Project project = load_project(file.string());

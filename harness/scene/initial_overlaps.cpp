@@ -141,11 +141,11 @@ void reject_initial_overlaps(const Scene& scene) {
         active.push_back(p);
     }
     if (first) {
-        json_fields::fail(body_path(scene, first->j), "'" + bodies[first->j].name + "' overlaps " +
-                                                          body_reference(scene, first->i) +
-                                                          " at t = 0 by " +
-                                                          number_text(-first->gap) + " m" +
-                                                          (first->rounding ? rounding_hint : separate_hint));
+        json_fields::fail(body_path(scene, first->j),
+                          "'" + bodies[first->j].name + "' overlaps " +
+                              body_reference(scene, first->i) + " at t = 0 by " +
+                              number_text(-first->gap) + " m" +
+                              (first->rounding ? rounding_hint : separate_hint));
     }
 }
 
