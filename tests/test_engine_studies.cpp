@@ -53,7 +53,8 @@ std::size_t occurrences(const std::string& text, const std::string& part) {
 // tool and passes its trajectory on, with a "cost" block when `cost` is
 // given. Each run appends the integrator it was asked for to DIR/calls.
 std::string python_engine(const TempDir& dir, const std::string& refused,
-                          const std::string& refusal, const std::string& cost) {
+                          const std::string& refusal, const std::string& cost,
+                          int refusal_exit = 3) {
     const std::string script = (dir.dir / "engine.py").string();
     spit(script, "import json, subprocess, sys\n"
                  "scene = json.load(open(sys.argv[-1]))\n"
@@ -68,7 +69,9 @@ std::string python_engine(const TempDir& dir, const std::string& refused,
                      "    sys.stderr.write('" +
                      refusal +
                      "\\n')\n"
-                     "    sys.exit(3)\n"
+                     "    sys.exit(" +
+                     std::to_string(refusal_exit) +
+                     ")\n"
                      "run = subprocess.run(['" +
                      impulse::test::tool_under_test() +
                      "', 'run', '--quiet', sys.argv[-1]], capture_output=True, text=True)\n"
@@ -368,6 +371,32 @@ TEST_CASE("sweep uses the cost an external engine reports", "[engine-external]")
     CHECK(p.at("cost_spread").get<double>() == 0.0);
     CHECK(p.at("work").at("steps") == 1234);
     CHECK(p.at("work_identical") == true);
+}
+
+TEST_CASE("sweep marks a grid point failed where an external engine's model stops (exit 1) and "
+          "goes on, and a crash ends it naming the point",
+          "[engine-external]") {
+    const TempDir dir;
+    const std::vector<std::string> sweep = {
+        "sweep",     "head-on", "--root",       root,         "--quiet",         "--no-references",
+        "--dt",      "0.01",    "--integrator", "verlet,rk4", "--toi-tolerance", "1e-9",
+        "--repeats", "1",       "--engine",     "picky",      "--engine-command"};
+    std::vector<std::string> stops = sweep;
+    stops.push_back(python_engine(dir, "rk4", "a cascade I cannot end", "", 1));
+    const test::Outcome stopped = run_tool(stops);
+    INFO(stopped.out << stopped.err);
+    CHECK(stopped.exit_code == 0);
+    CHECK(stopped.out.find("1 point measured, 1 failed") != std::string::npos);
+    CHECK(stopped.out.find("a cascade I cannot end") != std::string::npos);
+
+    std::vector<std::string> crashes = sweep;
+    crashes.push_back(python_engine(dir, "rk4", "broken", "", 2));
+    const test::Outcome crashed = run_tool(crashes);
+    INFO(crashed.out << crashed.err);
+    CHECK(crashed.exit_code == 2);
+    CHECK(crashed.err.find("engine 'picky' failed on ") != std::string::npos);
+    CHECK(crashed.err.find("head-on.json (with dt 0.01, integrator rk4, toi_tolerance 1e-09): "
+                           "exit status 2: broken") != std::string::npos);
 }
 
 TEST_CASE("sweep lists the grid points an external engine refuses as skipped, once each",

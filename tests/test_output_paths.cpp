@@ -234,7 +234,7 @@ TEST_CASE("The path - writes an output to standard output", "[unit][output-paths
     CHECK(plot.exit_code == 0);
     CHECK(plot.out.find("<svg") != std::string::npos);
     CHECK(plot.out.find("grid points") == std::string::npos);
-    CHECK(plot.err.find("1 points measured") != std::string::npos);
+    CHECK(plot.err.find("1 point measured") != std::string::npos);
     std::vector<std::string> both = sweep;
     both.push_back("--json");
     CHECK(run_tool(both).exit_code == 2); // two outputs cannot share standard output
@@ -506,7 +506,7 @@ TEST_CASE("A bad report file is refused before the run: no JUnit or JSON is writ
     CHECK(state_of(json) == "missing");
 }
 
-TEST_CASE("--json or --junit naming a file of the --report folder is refused, the file kept",
+TEST_CASE("A --json or --junit naming a file of the --report folder is refused, the file kept",
           "[unit][output-paths]") {
     const TempDir dir;
     const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);

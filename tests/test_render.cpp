@@ -445,10 +445,11 @@ TEST_CASE("impulse render draws a scene and a trajectory", "[render]") {
         CHECK(err.str().empty());
         CHECK(out.str() == render_svg(scene, trajectory));
 
-        // No scene under this root: paths only, with a note.
+        // No scene under this root (an empty folder): paths only, with a note.
+        const fs::path empty_root = temp_path("empty-root");
+        fs::create_directories(empty_root);
         std::ostringstream out2, err2;
-        REQUIRE(render_verb({file.string(), "--root", temp_path("nowhere").string()}, out2, err2) ==
-                0);
+        REQUIRE(render_verb({file.string(), "--root", empty_root.string()}, out2, err2) == 0);
         CHECK(out2.str() == render_svg(trajectory));
         CHECK(err2.str().rfind("note: ", 0) == 0);
         CHECK(err2.str().find("does not exist") != std::string::npos);

@@ -169,8 +169,26 @@ std::string failure_reason(const ProcessResult& process, const EngineSpec& engin
     return reason + ": " + (message.empty() ? "(nothing on standard error)" : message);
 }
 
-std::string failed_label(const EngineSpec& engine, const Scene& scene) {
-    return "engine '" + engine.name + "' failed on " + scene.file;
+// "engine 'mine' failed on drop.json (with dt 0.02, integrator euler)": the
+// overrides of the command line or of a sweep's grid point, since the same
+// scene may run under many.
+std::string failed_label(const EngineSpec& engine, const Scene& scene,
+                         const Overrides& overrides = {}) {
+    std::string with;
+    const auto add = [&with](const std::string& item) {
+        with += (with.empty() ? " (with " : ", ") + item;
+    };
+    if (overrides.dt) {
+        add("dt " + format_double(*overrides.dt));
+    }
+    if (overrides.integrator) {
+        add(std::string("integrator ") + integrator_name(*overrides.integrator));
+    }
+    if (overrides.toi_tolerance) {
+        add("toi_tolerance " + format_double(*overrides.toi_tolerance));
+    }
+    return "engine '" + engine.name + "' failed on " + scene.file +
+           (with.empty() ? "" : with + ")");
 }
 
 ProcessResult run_command(const EngineSpec& engine, const Scene& received, const Scene& scene) {
@@ -229,7 +247,11 @@ EngineRun run_external(const EngineSpec& engine, const Scene& scene, const Overr
         return result;
     }
     if (process.exit_code != 0) {
-        throw EngineFailure(failed_label(engine, scene), "", failure_reason(process, engine));
+        EngineFailure failure(failed_label(engine, scene, overrides), "",
+                              failure_reason(process, engine));
+        failure.model_stopped =
+            process.exit_code == 1 && !process.timed_out && !process.overflowed && !process.signal;
+        throw failure;
     }
     EngineOutput output;
     try {

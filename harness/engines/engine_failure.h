@@ -14,6 +14,11 @@ class EngineFailure : public InputError {
     using InputError::InputError;
     // The same sentence, found while reading the engine's output.
     explicit EngineFailure(const InputError& cause) : InputError(cause) {}
+
+    // Exit status 1: by the protocol, the engine's model cannot go on with
+    // this scene (a cascade it cannot end), not a broken engine. A sweep
+    // marks that one grid point failed and goes on, as for impulse's stops.
+    bool model_stopped = false;
 };
 
 } // namespace impulse::harness

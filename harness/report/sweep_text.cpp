@@ -198,8 +198,8 @@ void write_counts(const SweepResult& r, std::ostream& out) {
         skipped += n;
     }
     out << "\n"
-        << r.points.size() - failed - skipped << " points measured, " << failed << " failed"
-        << (skipped > 0 ? ", " + std::to_string(skipped) + " skipped" : "") << "\n";
+        << plural(r.points.size() - failed - skipped, "point", "points") << " measured, " << failed
+        << " failed" << (skipped > 0 ? ", " + std::to_string(skipped) + " skipped" : "") << "\n";
     for (const auto& [reason, n] : skips) {
         out << "skipped " << plural(n, "point", "points") << ": " << reason << "\n";
     }

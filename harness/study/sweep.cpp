@@ -1,6 +1,7 @@
 #include "sweep.h"
 
 #include "engine.h"
+#include "engine_failure.h"
 #include "expectations.h"
 #include "input_error.h"
 #include "number_format.h"
@@ -123,8 +124,10 @@ Overrides engine_overrides(const SweepPoint& point) {
 // A point of another engine, run through the protocol. Its cost is what the
 // engine reports when every repeat reports it (a median of mixed clocks would
 // mean nothing), otherwise the process's wall time. A refusal (exit 3) skips
-// the point at its first repeat; any other failure is run_engine's
-// InputError, for the whole sweep: the engine is broken, not the point.
+// the point at its first repeat, and exit 1 (the engine's model cannot go on,
+// as impulse's own stops) makes it a failed point; any other failure is
+// run_engine's InputError, for the whole sweep: the engine is broken, not
+// the point.
 template <typename Measure>
 void measure_engine(const EngineSpec& engine, const Scene& scene, SweepPoint& point, int repeats,
                     const Measure& error_of) {
@@ -139,7 +142,18 @@ void measure_engine(const EngineSpec& engine, const Scene& scene, SweepPoint& po
     std::vector<double> reported, process;
     std::vector<std::optional<long long>> steps;
     for (int k = 0; k < repeats; ++k) {
-        const EngineRun run = run_engine(engine, scene, overrides);
+        EngineRun run;
+        try {
+            run = run_engine(engine, scene, overrides);
+        } catch (const EngineFailure& e) {
+            if (!e.model_stopped) {
+                throw;
+            }
+            point.ok = false;
+            point.failure = e.what();
+            point.error = std::numeric_limits<double>::quiet_NaN();
+            return;
+        }
         if (run.outcome == EngineRun::Outcome::unsupported) {
             point.skipped = true;
             point.failure = "unsupported by " + engine.name + ": " + run.message;
