@@ -344,6 +344,11 @@ int write_goldens(const std::string& verb, const std::vector<std::string>& args,
         require_startable(engine);
     }
     const std::vector<std::string> paths = scenes_named(project, a.positional);
+    // A scene named on the command line from outside the project is the
+    // command's mistake, said alone before anything runs, not a broken scene.
+    for (const std::string& path : paths) {
+        require_project_scene(project, path);
+    }
     Preparation prepared = prepare_all(project, engines, paths, a.has_flag("--quiet"), err);
     const bool partial = a.has_flag("--partial");
     BlessCounts c = write_prepared(prepared, partial, out, err);
