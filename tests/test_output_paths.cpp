@@ -547,3 +547,18 @@ TEST_CASE("A failed scene's picture path that is a folder stops check before any
     CHECK(state_of(json) == "missing");
     CHECK(state_of(report) == "folder drop-box.svg");
 }
+
+TEST_CASE("compare refuses a --junit that is one of the runs --out writes, writing neither",
+          "[unit][output-paths]") {
+    const TempDir dir;
+    const fs::path root = make_root(dir, {"drop-box"}, Goldens::copied);
+    fs::create_directories(dir.dir / "runs");
+    const Outcome o = run_tool_in(dir.dir, {"compare", "drop-box", "--root", root.string(),
+                                            "--with", "none", "--quiet", "--out", "runs", "--junit",
+                                            "./runs/drop-box.impulse.json"});
+    INFO(o.out << o.err);
+    CHECK(o.exit_code == 2);
+    CHECK(o.err.find("--junit names ./runs/drop-box.impulse.json, a run --out writes") !=
+          std::string::npos);
+    CHECK(state_of(dir.dir / "runs") == "folder");
+}

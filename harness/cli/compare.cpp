@@ -83,7 +83,8 @@ that failed on a scene (crashed, timed out, wrote what is not a trajectory).
 
 // Every run of every scene into dir; nothing is written when one of the
 // paths is refused (a link, a FIFO), so the folder is never half new.
-void write_runs(const std::string& dir, const std::vector<EngineComparison>& comparisons) {
+void write_runs(const std::string& dir, const std::vector<EngineComparison>& comparisons,
+                const std::optional<std::string>& junit) {
     std::vector<std::pair<std::string, std::string>> files;
     for (const EngineComparison& c : comparisons) {
         for (const EngineColumn& e : c.engines) {
@@ -95,6 +96,11 @@ void write_runs(const std::string& dir, const std::vector<EngineComparison>& com
     }
     for (const auto& [path, content] : files) {
         require_regular_or_missing(path);
+        if (junit && same_output_file(*junit, path)) {
+            throw UsageError("--junit names " + *junit +
+                             ", a run --out writes: one would "
+                             "replace the other");
+        }
     }
     std::error_code error;
     std::filesystem::create_directories(dir, error);
@@ -165,7 +171,7 @@ int compare_verb(const std::vector<std::string>& args, std::ostream& out, std::o
         }
     }
     if (const auto dir = a.option("--out")) {
-        write_runs(*dir, report.scenes);
+        write_runs(*dir, report.scenes, a.option("--junit"));
     }
     if (const auto junit = a.option("--junit")) {
         write_output_file("--junit", *junit, comparison_junit(report), goldens, out);
