@@ -5,6 +5,7 @@
 #include "input_error.h"
 #include "progress.h"
 #include "project_options.h"
+#include "scene.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -346,8 +347,18 @@ int write_goldens(const std::string& verb, const std::vector<std::string>& args,
     const std::vector<std::string> paths = scenes_named(project, a.positional);
     // A scene named on the command line from outside the project is the
     // command's mistake, said alone before anything runs, not a broken scene.
+    // A file that is no scene at all keeps its own sentence (a broken scene).
     for (const std::string& path : paths) {
-        require_project_scene(project, path);
+        try {
+            require_project_scene(project, path);
+        } catch (const InputError&) {
+            try {
+                (void)load_scene(path);
+            } catch (const InputError&) {
+                continue;
+            }
+            throw;
+        }
     }
     Preparation prepared = prepare_all(project, engines, paths, a.has_flag("--quiet"), err);
     const bool partial = a.has_flag("--partial");
