@@ -289,8 +289,8 @@ void refuse_report_clash(const CheckRequest& r, const std::string& report_file) 
     for (const auto& [option, path] :
          {std::pair{"--json", r.json}, std::pair{"--junit", r.junit}}) {
         if (path && same_output_file(*path, report_file)) {
-            throw UsageError(std::string(option) + " names " + *path + ", a file of the --report " +
-                             "folder: one would replace the other");
+            throw UsageError(std::string(option) + " names " + printable_path(*path) +
+                             ", a file of the --report " + "folder: one would replace the other");
         }
     }
 }

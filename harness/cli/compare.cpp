@@ -97,7 +97,7 @@ void write_runs(const std::string& dir, const std::vector<EngineComparison>& com
     for (const auto& [path, content] : files) {
         require_regular_or_missing(path);
         if (junit && same_output_file(*junit, path)) {
-            throw UsageError("--junit names " + *junit +
+            throw UsageError("--junit names " + printable_path(*junit) +
                              ", a run --out writes: one would "
                              "replace the other");
         }

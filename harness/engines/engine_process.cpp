@@ -18,7 +18,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
-#include <filesystem>
 #include <optional>
 #include <poll.h>
 #include <spawn.h>
@@ -98,9 +97,7 @@ std::string start_hint(const std::string& program, int code) {
 }
 
 std::string cannot_start(const std::string& program, int code) {
-    std::error_code error;
-    if (code == EACCES && program.find('/') != std::string::npos &&
-        std::filesystem::is_directory(program, error)) {
+    if (code == EISDIR) {
         return "cannot start '" + printable_path(program) + "': it is a folder, not a program";
     }
     return "cannot start '" + printable_path(program) + "': " + std::strerror(code) +
@@ -108,14 +105,15 @@ std::string cannot_start(const std::string& program, int code) {
 }
 
 // 0 when `path` names a file this process may execute, else the errno execve
-// would give (a folder: EACCES).
+// would give, except EISDIR for a folder (execve's EACCES would say
+// "Permission denied" of something no permission makes a program).
 int execute_error(const std::string& path) {
     struct stat info {};
     if (::stat(path.c_str(), &info) != 0) {
         return errno;
     }
     if (S_ISDIR(info.st_mode)) {
-        return EACCES;
+        return EISDIR;
     }
     return ::access(path.c_str(), X_OK) == 0 ? 0 : errno;
 }
@@ -378,7 +376,7 @@ std::optional<std::string> start_problem(const std::vector<std::string>& command
         if (here == 0) {
             return std::nullopt;
         }
-        code = here == EACCES ? EACCES : code;
+        code = here == EACCES || here == EISDIR ? here : code;
         if (end == std::string::npos) {
             break;
         }
