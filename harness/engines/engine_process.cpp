@@ -150,6 +150,13 @@ std::optional<std::string> spawn(const ProcessRequest& request, int out, int err
     if (code == 0) {
         return std::nullopt;
     }
+    // posix_spawnp says EACCES of a folder too: the search says what it is.
+    if (code == EACCES) {
+        if (std::optional<std::string> why =
+                start_problem(request.command, request.working_directory)) {
+            return why;
+        }
+    }
     return cannot_start(request.command.front(), code);
 }
 
