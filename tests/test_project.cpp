@@ -288,7 +288,7 @@ std::vector<BadProject> bad_projects() {
         // A newline would print a forged row of check's table inside a hint.
         {"a regen of two lines",
          project_with(R"("scenes": ["scenes"], "regen": "make goldens\n  ok     drop  0.001 s")"),
-         "regen", "holds a control character at byte 12"},
+         "regen", "holds the control character 0x0A at byte 12"},
     };
 }
 

@@ -205,6 +205,10 @@ std::string listed(const std::vector<std::string>& names) {
     return text;
 }
 
+bool among(const std::vector<std::string>& names, const std::string& name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+}
+
 bool would_write(const Blessing& b) {
     return b.outcome == Blessing::Outcome::created || b.outcome == Blessing::Outcome::changed;
 }
@@ -212,9 +216,6 @@ bool would_write(const Blessing& b) {
 // "a refuses to be blessed", "b could not be loaded or run (its error above)", or both
 // joined: a scene whose engine crashed was not refused by its expectations.
 std::string why_held(const Preparation& p) {
-    const auto among = [](const std::vector<std::string>& names, const std::string& name) {
-        return std::find(names.begin(), names.end(), name) != names.end();
-    };
     std::vector<std::string> refused;
     for (const std::string& name : p.refusing) {
         if (!among(p.failing, name) && !among(p.unwritable, name)) {
@@ -242,9 +243,7 @@ std::string why_held(const Preparation& p) {
 std::string partial_note(const Preparation& p, int written) {
     std::vector<std::string> stale;
     for (const std::string& name : p.refusing) {
-        if (std::find(p.never_blessed.begin(), p.never_blessed.end(), name) ==
-                p.never_blessed.end() &&
-            std::find(p.unwritable.begin(), p.unwritable.end(), name) == p.unwritable.end()) {
+        if (!among(p.never_blessed, name) && !among(p.unwritable, name)) {
             stale.push_back(name);
         }
     }

@@ -154,10 +154,11 @@ int init_verb(const std::vector<std::string>& args, std::ostream& out, std::ostr
         }
     };
     fs::create_directories(dir / "scenes", error);
-    if (error || !fs::is_directory(dir / "scenes")) {
+    std::error_code looked;
+    if (error || !fs::is_directory(dir / "scenes", looked)) {
         // A link that leads nowhere is in the way without an error of its own.
         const std::string why =
-            fs::is_symlink(fs::symlink_status(dir / "scenes"))
+            fs::is_symlink(fs::symlink_status(dir / "scenes", looked))
                 ? "a symbolic link to a folder that does not exist is in the way"
                 : error.message();
         take_back();

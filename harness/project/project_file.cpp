@@ -5,6 +5,7 @@
 #include "project.h"
 #include "scene_reading.h"
 #include "strict_json.h"
+#include "trajectory_fields.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -213,14 +214,7 @@ Project read_project(const Node& top, const std::string& file, const std::string
         }
         // Printed inside hints and tables: a newline or an escape sequence
         // would forge a line of check's table (an outside review's "ok drop").
-        for (std::size_t i = 0; i < project.regen.size(); ++i) {
-            const auto byte = static_cast<unsigned char>(project.regen[i]);
-            if (byte < 0x20 || byte == 0x7f) {
-                regen->fail("holds a control character at byte " + std::to_string(i) +
-                            "; it is printed in hints as one command line, so it must be "
-                            "printable text");
-            }
-        }
+        trajectory_fields::require_printable(project.regen, regen->path());
     }
     return project;
 }
