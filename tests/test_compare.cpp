@@ -316,7 +316,7 @@ TEST_CASE("per-channel counts and maxima", "[compare]") {
     Trajectory value = gold;
     value.frames[1][1] = up(0.5);     // box.x: 0.5 + 2^-53, 1 ulp
     value.frames[2][2] = up(1.0, 3);  // box.y: 1 + 3 * 2^-52, 3 ulps
-    value.frames[3][4] = 2.5;         // box.vx: 2 -> 2.5, 0.5 / 2^-51 = 2^50 ulps
+    value.frames[3][4] = 2.5;         // box.vx: 2 -> 2.5, at the velocity's scale 5 (box.vy)
     value.events[0].point[0] = 0.375; // events[0].point.x: 0.25 -> 0.375
     value.events[0].impulse = 3.5;    // unchanged
     value.frames[0][3] = up(0.5, 2);  // box.angle at t = 0
@@ -335,14 +335,15 @@ TEST_CASE("per-channel counts and maxima", "[compare]") {
     CHECK(velocity.compared == 12);
     CHECK(velocity.differing == 1);
     CHECK(velocity.max_abs == 0.5);
-    CHECK(velocity.max_rel == 0.25);
-    CHECK(velocity.max_ulp == (std::uint64_t{1} << 50));
+    // box.vx shares box.vy's scale, 5: 0.5 / 5, and 0.5 over the ULP of [4, 8), 2^-50.
+    CHECK(velocity.max_rel == 0.1);
+    CHECK(velocity.max_ulp == (std::uint64_t{1} << 49));
 
     const ChannelSummary& angle = summary(c, Channel::angle);
     CHECK(angle.compared == 8); // box.angle in 4 frames; normal.x, normal.y in 2 events
     CHECK(angle.differing == 1);
     CHECK(angle.max_abs == 0x1p-52);
-    CHECK(angle.max_ulp == 2);
+    CHECK(angle.max_ulp == 1); // 2^-52 at an angle's scale of at least 1 rad
 
     CHECK(summary(c, Channel::impulse).differing == 0);
     CHECK(summary(c, Channel::impulse).max_abs == 0.0);

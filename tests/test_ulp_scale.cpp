@@ -2,6 +2,7 @@
 // (harness/gate/scaled_difference.h, docs/gate-rules.md "ULP and relative
 // differences"): near zero and across a sign change a few rounding errors
 // report a few ULP, and a golden 0 gives a finite relative difference.
+#include "channel_scale.h"
 #include "compare.h"
 #include "scaled_difference.h"
 #include "support/comparing.h"
@@ -18,8 +19,9 @@ using namespace impulse::test::comparing;
 
 namespace {
 
-// comparing.h's sample: box.vx is 0, 0, 0, 2 (its scale 2) and box.omega is 0
-// throughout. Its events are the same in every run compared here.
+// comparing.h's sample: box.vx is 0, 0, 0, 2 and box.vy reaches -5, so the
+// velocity's scale is 5; box.omega is 0 throughout. Its events are the same
+// in every run compared here.
 
 // Every channel bounded by `ulp` ULP alone.
 Tolerances every_channel(std::uint64_t ulp) {
@@ -29,9 +31,10 @@ Tolerances every_channel(std::uint64_t ulp) {
 } // namespace
 
 TEST_CASE("ULPs near zero are counted at the channel's scale", "[ulp]") {
-    // box.vx holds 0, 0, 0, 2 in the golden: its scale is 2, where doubles
-    // are 2^-51 apart. A value near zero there is what is left of a
-    // cancellation, and a change of k rounding errors of that size is k ULP.
+    // box.vx holds 0, 0, 0, 2 in the golden and box.vy reaches -5: the
+    // velocity's scale is 5, where doubles are 2^-50 apart. A value near zero
+    // there is what is left of a cancellation, and a change of k rounding
+    // errors of that size is k ULP (here k 2^-51, so at most k).
     const Trajectory gold_base = sample();
     SECTION("a 1 to 4 ULP change near zero reports at most 4") {
         for (int k = 1; k <= 4; ++k) {
@@ -56,28 +59,60 @@ TEST_CASE("ULPs near zero are counted at the channel's scale", "[ulp]") {
         value.frames[1][4] = -1e-300;
         Comparison c = compare(gold, value, std::nullopt);
         REQUIRE(c.first_divergences.size() == 1);
-        CHECK(c.first_divergences[0].ulp == 1); // 2e-300 is far below one spacing, 2^-51
+        CHECK(c.first_divergences[0].ulp == 1); // 2e-300 is far below one spacing, 2^-50
         gold.frames[1][4] = 0x1p-53;
         value.frames[1][4] = -0x1p-53;
         c = compare(gold, value, std::nullopt);
-        CHECK(c.first_divergences[0].ulp == 1); // 2^-52 / 2^-51 rounds up to 1
+        CHECK(c.first_divergences[0].ulp == 1); // 2^-52 / 2^-50 rounds up to 1
         // A ULP tolerance bounds the same count: 1 ULP passes.
         CHECK(compare(gold, value, every_channel(1)).passed);
         CHECK_FALSE(compare(gold, value, every_channel(0)).passed);
     }
     SECTION("a golden 0 gives a finite relative difference") {
         Trajectory value = gold_base;
-        value.frames[0][4] = 1e-10; // box.vx golden 0, scale 2
+        value.frames[0][4] = 1e-10; // box.vx golden 0, scale 5 (box.vy's)
         value.frames[0][6] = 1e-10; // box.omega: 0 in every golden frame
         const Comparison c = compare(gold_base, value, std::nullopt);
         REQUIRE(c.first_divergences.size() == 2);
         CHECK(c.first_divergences[0].column == "box.vx");
-        CHECK(c.first_divergences[0].rel_diff == 1e-10 / 2.0);
+        CHECK(c.first_divergences[0].rel_diff == 1e-10 / 5.0);
         CHECK(c.first_divergences[1].column == "box.omega");
         CHECK(c.first_divergences[1].rel_diff == 1.0); // a channel of zeros: relative to new
         CHECK(std::isfinite(summary(c, Channel::velocity).max_rel));
         CHECK(std::isfinite(summary(c, Channel::angular_velocity).max_rel));
     }
+}
+
+TEST_CASE("a body's vector components share a scale and an angle's is at least a radian", "[ulp]") {
+    Trajectory gold = sample();
+    for (std::vector<double>& frame : gold.frames) {
+        frame[1] = 0.0;   // box.x: dropped straight, 0 in every frame; box.y up to 3
+        frame[3] = 1e-15; // box.angle: a rounding's turn, never more
+    }
+    const std::vector<double> scales = column_scales(gold);
+    CHECK(scales[0] == 0.75); // t: its own largest
+    CHECK(scales[1] == 3.0);  // box.x takes box.y's
+    CHECK(scales[2] == 3.0);  // box.y
+    CHECK(scales[3] == 1.0);  // box.angle: 1 rad
+    CHECK(scales[4] == 5.0);  // box.vx takes box.vy's
+    CHECK(scales[5] == 5.0);  // box.vy
+    CHECK(scales[6] == 0.0);  // box.omega: all zeros, no partner
+    Trajectory value = gold;
+    value.frames[2][1] = 0x1p-51;         // one rounding error at y's scale, 3 (spacing 2^-51)
+    value.frames[2][3] = 1e-15 + 0x1p-52; // one rounding error of a radian
+    const Comparison c = compare(gold, value, std::nullopt);
+    REQUIRE(c.first_divergences.size() == 2);
+    CHECK(c.first_divergences[0].column == "box.x");
+    CHECK(c.first_divergences[0].ulp == 1);
+    CHECK(c.first_divergences[0].rel_diff == 0x1p-51 / 3.0);
+    CHECK(c.first_divergences[1].column == "box.angle");
+    CHECK(c.first_divergences[1].ulp == 1);
+    CHECK(c.first_divergences[1].rel_diff < 2.3e-16);
+    // Each on its own would read about 2^52 ULP and a relative difference of
+    // 1 (x, a column of zeros) or 0.2 (the angle).
+    CHECK(ulp_at_scale(0.0, 0x1p-51, 0.0) > 1000000000000ULL);
+    // A ULP tolerance of 1 passes both.
+    CHECK(compare(gold, value, every_channel(1)).passed);
 }
 
 TEST_CASE("ulp_at_scale and relative_at_scale", "[ulp]") {

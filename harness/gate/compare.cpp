@@ -3,6 +3,7 @@
 // event bodies), then every value that both trajectories have.
 #include "compare.h"
 
+#include "channel_scale.h"
 #include "number_format.h"
 #include "scaled_difference.h"
 #include "trajectory_columns.h"
@@ -282,6 +283,7 @@ void compare_frames(const Trajectory& gold, const Trajectory& value,
     const std::size_t frames = std::min(gold.frames.size(), value.frames.size());
     const std::optional<std::size_t> gold_t = index_of(gold.columns, "t");
     const ColumnIndex in_value(value.columns);
+    const std::vector<double> scales = column_scales(gold);
     for (std::size_t gc = 0; gc < gold.columns.size(); ++gc) {
         const std::string& column = gold.columns[gc];
         const std::optional<std::size_t> vc = in_value(column);
@@ -289,12 +291,7 @@ void compare_frames(const Trajectory& gold, const Trajectory& value,
         if (!vc || !channel) {
             continue; // reported as structural
         }
-        double scale = 0.0;
-        for (std::size_t k = 0; k < gold.frames.size(); ++k) {
-            if (gc < gold.frames[k].size()) {
-                widen_scale(scale, gold.frames[k][gc]);
-            }
-        }
+        const double scale = scales[gc];
         bool diverged = false;
         for (std::size_t k = 0; k < frames; ++k) {
             const std::vector<double>& g = gold.frames[k];
@@ -332,22 +329,6 @@ constexpr std::array<EventField, 8> event_fields = {{
     {"vn_before", Channel::velocity},
     {"vn_after", Channel::velocity},
 }};
-
-// The largest |x| or |y| of any body's position over the golden's frames.
-double position_scale(const Trajectory& gold) {
-    double scale = 0.0;
-    for (std::size_t c = 0; c < gold.columns.size(); ++c) {
-        if (column_channel(gold.columns[c]) != Channel::position) {
-            continue;
-        }
-        for (const std::vector<double>& frame : gold.frames) {
-            if (c < frame.size()) {
-                widen_scale(scale, frame[c]);
-            }
-        }
-    }
-    return scale;
-}
 
 std::array<double, 8> event_values(const TrajectoryEvent& e) {
     return {e.t,         e.point[0], e.point[1],  e.normal[0],
