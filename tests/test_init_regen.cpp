@@ -76,6 +76,15 @@ TEST_CASE("init writes a project file and an example scene that bless and check 
     const Outcome checked = run_tool_in(dir, {"check"});
     require_exit(checked, 0);
     CHECK(has(checked.out, "1 scene: 1 passed, 0 failed, 0 errors"));
+
+    // The starter names Box2D observables, so the comparison compares
+    // something: its tolerances (2 dt in time, about 3.6 |g| dt in speed)
+    // hold Box2D 2.4.1's lag of one to two steps.
+    const Outcome box2d = run_tool_in(dir, {"box2d"});
+    require_exit(box2d, 0);
+    CHECK(has(box2d.out, "impact 1 time of 'ball'"));
+    CHECK(has(box2d.out, "apex 2 / apex 1 of 'ball'"));
+    CHECK(has(box2d.out, "all 8 rows within tolerance"));
 }
 
 TEST_CASE("init refuses to overwrite either file and writes nothing", "[init-regen]") {
