@@ -133,3 +133,41 @@ TEST_CASE("regen writes no golden when one golden's path cannot be written",
     CHECK(slurp(goldens / "head-on.json") != head_on);
     CHECK(fs::is_directory(goldens / "drop.json"));
 }
+
+TEST_CASE("bless never replaces a read-only golden and keeps a replaced golden's permissions",
+          "[unit][gate-reliability]") {
+    const TempDir temp;
+    const fs::path dir = starter_project(temp);
+    require_exit(run_tool_in(dir, {"bless"}), 0);
+    const fs::path golden = dir / "goldens" / "drop.json";
+    const auto edit_scene = [&dir](const std::string& word) {
+        std::string text = slurp(dir / "scenes" / "drop.json");
+        const std::string key = "\"description\": \"";
+        REQUIRE(text.find(key) != std::string::npos);
+        text.replace(text.find(key), key.size(), key + word + " ");
+        spit(dir / "scenes" / "drop.json", text);
+    };
+
+    // Made read-only by the user: refused, its bytes and mode kept (rename()
+    // alone would replace it, since only the folder's permission counts).
+    const std::string before = slurp(golden);
+    fs::permissions(golden, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+    edit_scene("edited");
+    const Outcome refused = run_tool_in(dir, {"bless"});
+    INFO(refused.out << refused.err);
+    CHECK(refused.exit_code == 2);
+    CHECK(has(refused.out, "NOT WRITTEN drop"));
+    CHECK(has(refused.err, "drop.json: is read-only; bless does not replace a golden"));
+    CHECK(slurp(golden) == before);
+    CHECK((fs::status(golden).permissions() & fs::perms::owner_write) == fs::perms::none);
+
+    // Writable with permissions of its own (0640): replaced, the permissions kept.
+    const fs::perms shared = fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read;
+    fs::permissions(golden, shared);
+    const Outcome blessed = run_tool_in(dir, {"bless"});
+    INFO(blessed.out << blessed.err);
+    CHECK(blessed.exit_code == 0);
+    CHECK(has(blessed.out, "changed    drop"));
+    CHECK(slurp(golden) != before);
+    CHECK((fs::status(golden).permissions() & fs::perms::all) == shared);
+}

@@ -3,6 +3,7 @@
 #include "cli.h"
 #include "gate.h"
 #include "input_error.h"
+#include "interruption.h"
 #include "progress.h"
 #include "project_options.h"
 #include "scene.h"
@@ -361,17 +362,28 @@ int write_goldens(const std::string& verb, const std::vector<std::string>& args,
     }
     Preparation prepared = prepare_all(project, engines, paths, a.has_flag("--quiet"), err);
     const bool partial = a.has_flag("--partial");
-    BlessCounts c = write_prepared(prepared, partial, out, err);
-    const bool held = !prepared.refusing.empty() && !partial;
-    for (const std::string& golden : unreferenced_goldens(project)) {
-        if (a.has_flag("--prune") && !held) {
-            std::filesystem::remove(golden);
-            ++c.removed;
-            out << "  removed    " << printable_path(golden) << "\n";
-        } else {
-            out << "  unreferenced " << printable_path(golden)
-                << (held ? std::string(" (not pruned while a scene refuses)\n")
-                         : " (" + unreferenced_reason(project, golden) + "; --prune deletes it)\n");
+    BlessCounts c;
+    {
+        // The goldens change as one set: an interrupt (Ctrl-C, a CI cancel)
+        // that arrives once they are being written takes effect after the
+        // last is written or pruned. Held on this thread alone, the only one
+        // left: the scenes' runs have ended. An outside review interrupted a
+        // bless of six changed goldens after the first and found 1 of 6
+        // written.
+        const HeldInterrupts whole_set;
+        c = write_prepared(prepared, partial, out, err);
+        const bool held = !prepared.refusing.empty() && !partial;
+        for (const std::string& golden : unreferenced_goldens(project)) {
+            if (a.has_flag("--prune") && !held) {
+                std::filesystem::remove(golden);
+                ++c.removed;
+                out << "  removed    " << printable_path(golden) << "\n";
+            } else {
+                out << "  unreferenced " << printable_path(golden)
+                    << (held ? std::string(" (not pruned while a scene refuses)\n")
+                             : " (" + unreferenced_reason(project, golden) +
+                                   "; --prune deletes it)\n");
+            }
         }
     }
     out << "goldens: " << c.created << " new, " << c.changed << " changed, " << c.unchanged

@@ -7,6 +7,7 @@
 #include "comparison_run.h"
 #include "gate.h"
 #include "input_error.h"
+#include "interruption.h"
 #include "junit.h"
 #include "output_path.h"
 #include "progress.h"
@@ -403,6 +404,10 @@ int print_results(std::ostream& table, const CheckRequest& r, const std::vector<
 void write_outputs(const CheckRequest& r, const std::vector<SceneCheck>& checks,
                    const std::optional<ComparisonReport>& comparison, CheckRun run,
                    std::ostream& out, std::ostream& table) {
+    // The outputs are one set: an interrupt that arrives once they are being
+    // written takes effect after the last (an outside review interrupted
+    // check between --json and --report and found the JSON alone).
+    const HeldInterrupts whole_set;
     std::vector<std::pair<std::string, std::string>> report;
     if (r.report) {
         report = report_files(*r.report, checks);

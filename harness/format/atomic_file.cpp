@@ -91,10 +91,16 @@ void write_file_atomically(const std::string& path, const std::string& content) 
         data += n;
         left -= static_cast<std::size_t>(n);
     }
-    // mkstemp creates 0600; give the file the usual permissions.
-    const mode_t mask = ::umask(0);
-    ::umask(mask);
-    ::fchmod(fd, 0666 & ~mask);
+    // mkstemp creates 0600. A file replaced keeps its permissions (a golden
+    // the team made group-writable stays so); a new one gets the usual ones.
+    struct stat old {};
+    if (::stat(path.c_str(), &old) == 0 && S_ISREG(old.st_mode)) {
+        ::fchmod(fd, old.st_mode & 07777);
+    } else {
+        const mode_t mask = ::umask(0);
+        ::umask(mask);
+        ::fchmod(fd, 0666 & ~mask);
+    }
     if (::fsync(fd) != 0 || ::close(fd) != 0) {
         const std::string why = reason();
         std::remove(temp.c_str());

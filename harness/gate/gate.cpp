@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace impulse::harness {
@@ -396,6 +397,18 @@ Blessing prepare_blessing(const Project& project, const EngineSpec& engine,
 
 void check_golden_writable(const Blessing& blessing) {
     require_regular_or_missing(blessing.golden_file);
+    // A golden with no write permission is one the user protected; rename()
+    // would replace it all the same (only the folder's permission counts),
+    // so it is refused here, root included (found by an outside review: a
+    // chmod 444 golden came back 0644).
+    struct stat golden {};
+    if (::stat(blessing.golden_file.c_str(), &golden) == 0 && S_ISREG(golden.st_mode) &&
+        ((golden.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 ||
+         ::access(blessing.golden_file.c_str(), W_OK) != 0)) {
+        throw InputError(blessing.golden_file, "",
+                         "is read-only; bless does not replace a golden that was made read-only "
+                         "(make it writable, chmod u+w, to bless it)");
+    }
     // The nearest folder that exists is the one the missing ones are made in.
     fs::path folder = fs::path(blessing.golden_file).parent_path();
     std::error_code error;
