@@ -138,6 +138,10 @@ TEST_CASE("regen from a subfolder regenerates the goldens of the project found u
     const Outcome by_path = run_tool_in(sub, {"regen", "../../scenes/drop.json"});
     require_exit(by_path, 0);
     CHECK(has(by_path.out, "unchanged  drop"));
+    // Named twice, by name and by path: one scene, one golden.
+    const Outcome twice = run_tool_in(sub, {"regen", "drop", "../../scenes/../scenes/drop.json"});
+    require_exit(twice, 0);
+    CHECK(has(twice.out, "goldens: 0 new, 0 changed, 1 unchanged"));
 
     // --prune from the subfolder removes a golden with no scene.
     spit(p.dir / "goldens" / "ghost.json", blessed);

@@ -344,6 +344,12 @@ TEST_CASE("rejected conserved expectations", "[scene]") {
                                    R"("gravity": [0, 0], "restitution": 0.5,)"),
                          "expectations[0].quantities[0]",
                          "energy is conserved only with restitution 1, but the scene's is 0.5");
+        // The way out names a kind, not a quantity (an outside review
+        // followed "use energy-non-increasing" into the quantities list).
+        require_rejected(expecting(conserved(R"(["energy"])"), free_bodies,
+                                   R"("gravity": [0, 0], "restitution": 0.5,)"),
+                         "expectations[0].quantities[0]",
+                         "declare {\"kind\": \"energy-non-increasing\"} in its place");
     }
 }
 

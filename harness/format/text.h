@@ -13,6 +13,10 @@ std::string single_quoted(const std::string& name);
 // engine name); no escaping, so only for text known to need none.
 std::string double_quoted(const std::string& text);
 // "1 scene", "3 scenes".
+// ASCII lower case: names and folders told apart only by case are one file
+// on macOS and Windows.
+std::string lower_case(std::string text);
+
 std::string plural(std::size_t n, const char* one, const char* many);
 // Text padded with spaces to width, on the right (default) or on the left
 // (right = true, for numbers); longer text is left as it is.

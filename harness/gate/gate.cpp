@@ -72,7 +72,7 @@ Scene load_scene_for_golden(const Project& project, const std::string& scene_pat
     if (scene_stem(scene_path) != scene.name) {
         throw InputError(scene_path, "name",
                          "is \"" + scene.name + "\" but the file is " +
-                             fs::path(scene_path).filename().string() +
+                             printable_path(fs::path(scene_path).filename().string()) +
                              ": a scene's golden is goldens/NAME.json, so its file must be "
                              "NAME.json");
     }

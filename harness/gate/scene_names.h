@@ -3,14 +3,14 @@
 // Windows: shared by the scene lists and by check and bless.
 #pragma once
 
+#include "text.h" // lower_case, for the rule below
+
 #include <string>
 
 namespace impulse::harness {
 
 // "drop" for ".../drop.json".
 std::string scene_stem(const std::string& path);
-// ASCII lower case (names are ASCII: see the scene format).
-std::string lower_case(std::string text);
 // The end of the sentence refusing two names that differ only in case.
 extern const char* const case_clash_reason;
 

@@ -5,6 +5,7 @@
 #include "project.h"
 #include "scene_reading.h"
 #include "strict_json.h"
+#include "text.h"
 #include "trajectory_fields.h"
 
 #include <algorithm>
@@ -88,6 +89,12 @@ std::string read_goldens(const Node& node, const std::vector<std::string>& scene
         if (folder == goldens || (folder.empty() && goldens == ".")) {
             node.fail("is also a scenes folder (\"" + entry +
                       "\"): a golden NAME.json would overwrite its scene NAME.json");
+        }
+        if (lower_case(folder) == lower_case(goldens)) {
+            node.fail("and the scenes folder \"" + folder +
+                      "\" differ only in case: on a case-insensitive file system (macOS, "
+                      "Windows) they are one folder and a golden NAME.json would overwrite its "
+                      "scene NAME.json; name the goldens folder apart");
         }
     }
     return goldens;

@@ -4,6 +4,7 @@
 
 #include "check_outcome.h"
 #include "first_divergence.h"
+#include "input_error.h"
 #include "text.h"
 
 #include <algorithm>
@@ -140,8 +141,9 @@ std::string result_cell(const SceneCheck& check) {
 }
 
 std::string table_row(const SceneCheck& check) {
-    return "| " + markdown_cell(display_name(check), 100) + " | " + result_cell(check) + " | " +
-           markdown_cell(outcome_line(check)) + " | " + seconds_text(check.seconds) + " s |\n";
+    return "| " + markdown_cell(printable_path(display_name(check)), 100) + " | " +
+           result_cell(check) + " | " + markdown_cell(outcome_line(check)) + " | " +
+           seconds_text(check.seconds) + " s |\n";
 }
 
 const char* const table_head = "| scene | result | first divergence or message | time |\n"
@@ -182,7 +184,8 @@ std::string summary_head(const std::vector<SceneCheck>& checks, const CheckCount
 
 // One failing scene's details, folded.
 std::string details_block(const SceneCheck& check) {
-    std::string out = "<details><summary>" + markdown_cell(display_name(check), 100) + ": " +
+    std::string out = "<details><summary>" +
+                      markdown_cell(printable_path(display_name(check)), 100) + ": " +
                       status_word(check.status) + "</summary>\n\n";
     if (!check.message.empty()) {
         out += markdown_cell(check.message, 1000) + "\n\n";

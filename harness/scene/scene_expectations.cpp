@@ -79,7 +79,10 @@ const std::vector<std::string> conserved_quantities = {"momentum", "angular_mome
 // kinetic energy".
 void require_conserved(const Node& node, const Scene& scene, const std::string& quantity) {
     if (const std::optional<std::string> refusal = conservation_refusal(scene, quantity)) {
-        node.fail(*refusal + (quantity == "energy" ? "; use energy-non-increasing" : ""));
+        node.fail(*refusal + (quantity == "energy"
+                                  ? "; declare {\"kind\": \"energy-non-increasing\"} in its "
+                                    "place (an expectation of its own, not a quantity)"
+                                  : ""));
     }
 }
 
