@@ -282,6 +282,44 @@ TEST_CASE("CI mode: check --junit and --report into goldens/ are refused, the go
     CHECK(state_of(goldens) == "folder drop-box.json");
 }
 
+TEST_CASE("A project's goldens are refused as an output from outside the project too",
+          "[unit][output-paths]") {
+    // Two user projects beside a third folder the tool runs in: one names its
+    // goldens folder, one takes the default, and a broken project file still
+    // protects the default. None of them is the verb's project.
+    const TempDir dir;
+    const fs::path named = dir.dir / "app", plain = dir.dir / "lib", broken = dir.dir / "old";
+    const fs::path outside = dir.dir / "work";
+    for (const fs::path& folder :
+         {named / "expected", plain / "goldens", broken / "goldens", named / "results", outside}) {
+        fs::create_directories(folder);
+    }
+    spit(named / "impulse.json", R"({"schema": "impulse/project@1", "goldens": "expected"})");
+    spit(plain / "impulse.json", R"({"schema": "impulse/project@1"})");
+    spit(broken / "impulse.json", R"({"schema": "impulse/project@1", "goldens": )");
+    spit(named / "expected" / "drop.json", "golden bytes");
+    const std::string scene = (source_dir / "harness" / "scenes" / "drop-box.json").string();
+    const std::vector<std::string> targets = {
+        "../app/expected/drop.json", "../app/expected/new.json",
+        "../app/results/../expected/new.json", "../lib/goldens/new.json",
+        "../old/goldens/sub/../new.json"};
+    for (const std::string& target : targets) {
+        INFO("run --out " << target);
+        check_refused(run_tool_in(outside, {"run", scene, "--out", target}), target,
+                      "is in the goldens folder");
+    }
+    CHECK(slurp(named / "expected" / "drop.json") == "golden bytes");
+    CHECK(!fs::exists(named / "expected" / "new.json"));
+    CHECK(!fs::exists(plain / "goldens" / "new.json"));
+    CHECK(!fs::exists(broken / "goldens" / "new.json"));
+    // A project's other folders take outputs: only its goldens are protected.
+    const Outcome written =
+        run_tool_in(outside, {"run", scene, "--out", "../app/results/drop.json", "--quiet"});
+    INFO(written.err);
+    CHECK(written.exit_code == 0);
+    CHECK(fs::is_regular_file(named / "results" / "drop.json"));
+}
+
 TEST_CASE("check --report refuses a FIFO where a report file goes, and writes none of them",
           "[unit][output-paths]") {
     const TempDir dir;

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
 #include <unistd.h>
 #include <utility>
@@ -65,6 +66,94 @@ bool is_within(const fs::path& inner, const fs::path& folder) {
     return true;
 }
 
+// One top-level string member of a JSON document (its "schema", say), read
+// as a stream that stops as soon as it is known (or the document is not an
+// object): no tree is built, so any file, however large or deep, costs one
+// pass at most.
+class TopLevelString : public nlohmann::json_sax<nlohmann::json> {
+  public:
+    explicit TopLevelString(std::string key) : key_(std::move(key)) {}
+    std::optional<std::string> value;
+    bool null() override { return scalar(); }
+    bool boolean(bool) override { return scalar(); }
+    bool number_integer(number_integer_t) override { return scalar(); }
+    bool number_unsigned(number_unsigned_t) override { return scalar(); }
+    bool number_float(number_float_t, const string_t&) override { return scalar(); }
+    bool string(string_t& text) override {
+        if (depth_ == 1 && wanted_next_) {
+            value = text;
+            return false; // found: stop reading
+        }
+        return scalar();
+    }
+    bool binary(binary_t&) override { return scalar(); }
+    bool start_object(std::size_t) override { return open(); }
+    bool end_object() override { return close(); }
+    bool start_array(std::size_t) override { return depth_ > 0 && open(); }
+    bool end_array() override { return close(); }
+    bool key(string_t& name) override {
+        wanted_next_ = depth_ == 1 && name == key_;
+        return true;
+    }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+        return false;
+    }
+
+  private:
+    std::string key_;
+    int depth_ = 0;
+    bool wanted_next_ = false;
+    bool scalar() {
+        wanted_next_ = false;
+        return depth_ > 0;
+    }
+    bool open() {
+        wanted_next_ = false;
+        ++depth_;
+        return true;
+    }
+    bool close() {
+        --depth_;
+        return depth_ > 0;
+    }
+};
+
+// The top-level string member `key` of the JSON file at `path`; nothing when
+// the file cannot be read, is not an object or has no such string.
+std::optional<std::string> top_level_string(const fs::path& path, const std::string& key) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        return std::nullopt;
+    }
+    TopLevelString sax(key);
+    nlohmann::json::sax_parse(in, &sax, nlohmann::json::input_format_t::json, false);
+    return sax.value;
+}
+
+// The goldens folder of the project whose file is in `folder`, if one is: its
+// "goldens" member, or "goldens" when the file names none or is broken (the
+// default; project/ validates the member, this only reads it). So a project's
+// goldens are refused as an output from wherever the verb runs, not only from
+// inside the project (an outside review: `run --out ../app/goldens/x.json` run
+// outside ../app replaced that golden).
+std::optional<fs::path> project_goldens(const fs::path& folder) {
+    const fs::path file = folder / "impulse.json";
+    if (kind_at(file.string()) == FileKind::missing) {
+        return std::nullopt;
+    }
+    std::error_code error;
+    std::optional<std::string> named; // a FIFO or device is never opened
+    if (fs::is_regular_file(fs::status(file, error))) {
+        named = top_level_string(file, "goldens");
+    }
+    const fs::path goldens = resolved(folder / named.value_or("goldens"));
+    // A broken file's "." or "..": protect the default, not the whole project.
+    if (goldens == folder || !is_within(goldens, folder)) {
+        return resolved(folder / "goldens");
+    }
+    return goldens;
+}
+
 // A folder named goldens beside a harness/scenes folder is a repository's
 // goldens folder, whatever --root and the current directory say.
 bool is_goldens_of_a_root(const fs::path& folder) {
@@ -82,6 +171,9 @@ void refuse_protected(const std::string& option, const std::string& path, const 
     for (fs::path up = place; up.has_relative_path(); up = up.parent_path()) {
         if (is_goldens_of_a_root(up)) {
             folders.push_back(up);
+        }
+        if (const auto goldens = project_goldens(up)) {
+            folders.push_back(*goldens);
         }
     }
     for (const fs::path& goldens : folders) {
@@ -119,55 +211,6 @@ void refuse_missing_folder(const std::string& option, const std::string& path) {
     }
 }
 
-// The top-level "schema" of a JSON document, read as a stream that stops
-// as soon as it is known (or the document is not an object): no tree is
-// built, so any file, however large or deep, costs one pass at most.
-class TopLevelSchema : public nlohmann::json_sax<nlohmann::json> {
-  public:
-    std::string schema;
-    bool null() override { return scalar(); }
-    bool boolean(bool) override { return scalar(); }
-    bool number_integer(number_integer_t) override { return scalar(); }
-    bool number_unsigned(number_unsigned_t) override { return scalar(); }
-    bool number_float(number_float_t, const string_t&) override { return scalar(); }
-    bool string(string_t& value) override {
-        if (depth_ == 1 && schema_next_) {
-            schema = value;
-            return false; // found: stop reading
-        }
-        return scalar();
-    }
-    bool binary(binary_t&) override { return scalar(); }
-    bool start_object(std::size_t) override { return open(); }
-    bool end_object() override { return close(); }
-    bool start_array(std::size_t) override { return depth_ > 0 && open(); }
-    bool end_array() override { return close(); }
-    bool key(string_t& name) override {
-        schema_next_ = depth_ == 1 && name == "schema";
-        return true;
-    }
-    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
-        return false;
-    }
-
-  private:
-    int depth_ = 0;
-    bool schema_next_ = false;
-    bool scalar() {
-        schema_next_ = false;
-        return depth_ > 0;
-    }
-    bool open() {
-        schema_next_ = false;
-        ++depth_;
-        return true;
-    }
-    bool close() {
-        --depth_;
-        return depth_ > 0;
-    }
-};
-
 // A file at an output path that is one impulse reads and never writes: a
 // scene or a project file, by the schema it declares. A verb's outputs are
 // trajectories, results, reports and pictures, so one written over a scene
@@ -176,18 +219,14 @@ class TopLevelSchema : public nlohmann::json_sax<nlohmann::json> {
 // exit 0). The families are those of scene.h and project.h, which this
 // lowest module cannot include.
 void refuse_input_file(const std::string& option, const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        return; // unreadable: nothing of the user's to recognise
-    }
-    TopLevelSchema sax;
-    nlohmann::json::sax_parse(in, &sax, nlohmann::json::input_format_t::json, false);
+    // Unreadable or without a schema: nothing of the user's to recognise.
+    const std::string schema = top_level_string(path, "schema").value_or("");
     const std::pair<const char*, const char*> families[] = {{"impulse/scene@", "a scene"},
                                                             {"impulse/project@", "a project"}};
     for (const auto& [family, what] : families) {
-        if (sax.schema.rfind(family, 0) == 0) {
+        if (schema.rfind(family, 0) == 0) {
             throw InputError(path, option,
-                             "is " + std::string(what) + " file (schema " + sax.schema +
+                             "is " + std::string(what) + " file (schema " + schema +
                                  "); impulse never writes over one, so give another path");
         }
     }
