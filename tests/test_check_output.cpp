@@ -288,3 +288,34 @@ TEST_CASE("Bad --json, --compare and standard outputs: one sentence, exit 2, not
         CHECK(o.err.find("standard output") != std::string::npos);
     }
 }
+
+TEST_CASE("A bad -j names its bounds, and a bad --shard is said before the engine is looked for",
+          "[unit][check-output]") {
+    const TempDir dir;
+    // A project whose only engine cannot start: an option's mistake must be
+    // the sentence the user reads, not the engine's.
+    const fs::path root = dir.dir / "project";
+    spit(root / "scenes" / "drop-box.json",
+         slurp(fs::path(IMPULSE_SOURCE_DIR) / "harness/scenes/drop-box.json"));
+    spit(root / "impulse.json", R"({"schema": "impulse/project@1", "scenes": ["scenes"],
+        "engines": [{"name": "mine", "command": ["./no-such-engine"]}]})");
+    for (const std::string& jobs : std::vector<std::string>{"0", "1025", "99999999999"}) {
+        const Outcome o = run_tool({"check", "--root", root.string(), "-j", jobs});
+        INFO("-j " << jobs << ": " << o.err);
+        CHECK(o.exit_code == 2);
+        CHECK(o.err.find("--jobs must be a whole number from 1 to 1024, got '" + jobs + "'") !=
+              std::string::npos);
+    }
+    for (const std::string& shard :
+         std::vector<std::string>{"0/3", "4/3", "1/99999999999", "1-3"}) {
+        const Outcome o = run_tool({"check", "--root", root.string(), "--shard", shard});
+        INFO("--shard " << shard << ": " << o.err);
+        CHECK(o.exit_code == 2);
+        CHECK(o.err.find("--shard") != std::string::npos);
+        CHECK(o.err.find("no-such-engine") == std::string::npos);
+    }
+    // With good options, the engine is what is wrong.
+    const Outcome o = run_tool({"check", "--root", root.string(), "--shard", "1/3", "-j", "2"});
+    CHECK(o.exit_code == 2);
+    CHECK(o.err.find("no-such-engine") != std::string::npos);
+}

@@ -68,7 +68,8 @@ engine (it ran the scene when blessed), the refusal FAILED.
                     Its summary lines follow the table, it is in --json and
                     --junit, and the exit code is the worse of the two
   --report DIR      summary.md (for a pull request) and index.html with pictures
-  -j N, --jobs N    check N scenes at once (results identical to -j 1)
+  -j N, --jobs N    check N scenes at once, N from 1 to 1024 (results
+                    identical to -j 1)
   --shard K/N       only the scenes of shard K of N (a scene's shard depends on
                     its name alone); a shard that holds none or only some of
                     the scenes given says so and where the others are, and
@@ -280,7 +281,7 @@ CheckOptions gate_options(const Arguments& a) {
     }
     validate_tolerance_options(options);
     if (const auto jobs = a.option("--jobs")) {
-        options.jobs = parse_count("--jobs", *jobs, 1);
+        options.jobs = parse_count("--jobs", *jobs, 1, max_jobs);
     }
     return options;
 }
@@ -328,6 +329,11 @@ std::optional<CheckRequest> read_request(const Project& project, const Arguments
                                          std::ostream& err) {
     CheckRequest r;
     r.options = gate_options(a);
+    // Every option is read before an engine is looked for: a bad --shard is
+    // said as such, not hidden behind an engine that cannot start.
+    r.shard_spec = a.option("--shard");
+    const std::optional<std::pair<int, int>> shard_of =
+        r.shard_spec ? std::optional(parse_shard(*r.shard_spec)) : std::nullopt;
     r.engines = engines_chosen(project, a.option("--engine"));
     for (const EngineSpec& engine : r.engines) {
         require_startable(engine);
@@ -346,8 +352,8 @@ std::optional<CheckRequest> read_request(const Project& project, const Arguments
     }
     r.all = a.positional.empty();
     r.paths = scenes_named(project, a.positional);
-    if ((r.shard_spec = a.option("--shard"))) {
-        const auto [k, n] = parse_shard(*r.shard_spec);
+    if (shard_of) {
+        const auto [k, n] = *shard_of;
         const std::vector<std::string> given = r.paths;
         r.paths = shard(given, k, n);
         if (!r.all) {

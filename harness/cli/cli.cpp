@@ -118,11 +118,8 @@ int parse_count(const std::string& option, const std::string& text, int low, int
     int value = 0;
     std::istringstream in(text);
     if (!(in >> value) || !in.eof() || value < low || value > high) {
-        const std::string range =
-            high == std::numeric_limits<int>::max()
-                ? ">= " + std::to_string(low)
-                : "from " + std::to_string(low) + " to " + std::to_string(high);
-        throw UsageError(option + " must be a whole number " + range + ", got '" + text + "'");
+        throw UsageError(option + " must be a whole number from " + std::to_string(low) + " to " +
+                         std::to_string(high) + ", got '" + text + "'");
     }
     return value;
 }

@@ -43,8 +43,12 @@ Arguments parse_arguments(const std::vector<std::string>& args,
 // "-j 4" and "-j4" spelled "--jobs 4" for parse_arguments (check, conform).
 std::vector<std::string> normalise_jobs(const std::vector<std::string>& args);
 
+// The most scenes `check` and `conform` run at once (-j N): far past the
+// cores of any machine they run on, and a bound a message can name.
+inline constexpr int max_jobs = 1024;
+
 // A whole number from low to high given to `option` (--jobs, --shard,
-// --substeps), or UsageError.
+// --substeps), or UsageError naming the range.
 int parse_count(const std::string& option, const std::string& text, int low,
                 int high = std::numeric_limits<int>::max());
 

@@ -58,7 +58,8 @@ names, only those conformance scenes.
   --with LIST       the references beside it, comma-separated, or none (default:
                     every one on this machine); one not on this machine is exit 2
   --no-box2d        leave out the box2d-2.4 column (so does "box2d": false in impulse.json)
-  -j N, --jobs N    score N scenes at once (results identical to -j 1)
+  -j N, --jobs N    score N scenes at once, N from 1 to 1024 (results
+                    identical to -j 1)
   --quiet           no progress bar (drawn on standard error only when that is a
                     terminal, after about a second of work)
 
@@ -173,9 +174,10 @@ int conform_verb(const std::vector<std::string>& raw, std::ostream& out, std::os
         write_list(out, dir, shipped_scenes(dir));
         return exit_ok;
     }
+    const int jobs =
+        a.option("--jobs") ? parse_count("--jobs", *a.option("--jobs"), 1, max_jobs) : 1;
     const Project project = find_project(a.option("--root"));
     const EngineSpec tested = chosen_engine(project, a);
-    const int jobs = a.option("--jobs") ? parse_count("--jobs", *a.option("--jobs"), 1) : 1;
 
     // Output paths are refused before anything runs.
     const std::vector<std::string> goldens = protected_folders(project);
