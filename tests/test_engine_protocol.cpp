@@ -469,6 +469,18 @@ TEST_CASE("an engine's output is read as strictly as a scene", "[engine-protocol
         CHECK(cut.rfind(output + ": not valid JSON: ", 0) == 0);
         CHECK(cut.find("the output stops inside the trajectory") != std::string::npos);
         CHECK(cut.find("text follows") == std::string::npos);
+        // Cut inside a number (after its sign or its point) or inside
+        // a key: the parser names what it last read, not the end of input.
+        const std::size_t frames = trajectory.find("\"frames\"");
+        REQUIRE(frames != std::string::npos);
+        for (const std::string& inside : std::vector<std::string>{".", "-", "\"t"}) {
+            const std::size_t at = trajectory.find(inside, inside == "\"t" ? 0 : frames);
+            REQUIRE(at != std::string::npos);
+            const std::string cut_inside =
+                refusal(f.replaying(trajectory.substr(0, at + inside.size())), f.fall);
+            INFO("cut after '" << inside << "': " << cut_inside);
+            CHECK(cut_inside.find("the output stops inside the trajectory") != std::string::npos);
+        }
     }
     SECTION("a wrong, a missing and an extra column") {
         const auto columns = [&](std::vector<std::string> names) {

@@ -93,9 +93,13 @@ std::string with_stray_text(const std::string& text, const std::string& message)
     if (message.find("; expected end of input") != std::string::npos) {
         return message + " (text follows the trajectory: " + only + ")";
     }
-    // "unexpected end of input; ...": the text stops inside the trajectory
-    // (an outside review's engine killed mid-write was told text followed it).
-    if (message.find("unexpected end of input") != std::string::npos) {
+    // The text stops inside the trajectory: the parser says "unexpected end of
+    // input", or, cut inside a number, string or literal, names what it last
+    // read; either way the last character is no closing brace (an outside
+    // review's engine killed mid-write was told text followed it, and one cut
+    // inside a number was told nothing).
+    const std::size_t last = text.find_last_not_of(" \t\r\n");
+    if (message.find("unexpected end of input") != std::string::npos || text[last] != '}') {
         return message + " (the output stops inside the trajectory: the engine exited, or "
                          "closed standard output, before writing all of it; flush it before "
                          "exiting)";
