@@ -419,3 +419,70 @@ TEST_CASE("sweep lists the grid points an external engine refuses as skipped, on
     CHECK(occurrences(calls, "verlet\n") == 6);
     CHECK(occurrences(calls, "rk4\n") == 2);
 }
+
+TEST_CASE("sweep runs an integrator or tolerance an external engine ignores once, and says so",
+          "[engine-external]") {
+    const TempDir dir;
+    // An engine with one integrator and one tolerance of its own, whatever
+    // the scene names: the built tool on the scene with those two replaced.
+    const std::string script = (dir.dir / "fixed.py").string();
+    spit(script, "import json, subprocess, sys\n"
+                 "scene = json.load(open(sys.argv[-1]))\n"
+                 "with open('" +
+                     (dir.dir / "calls").string() +
+                     "', 'a') as calls:\n"
+                     "    calls.write('run\\n')\n"
+                     "scene['solver']['integrator'] = 'verlet'\n"
+                     "scene['solver']['toi_tolerance'] = 1e-9\n"
+                     "json.dump(scene, open('" +
+                     (dir.dir / "own.json").string() +
+                     "', 'w'))\n"
+                     "run = subprocess.run(['" +
+                     impulse::test::tool_under_test() + "', 'run', '--quiet', '" +
+                     (dir.dir / "own.json").string() +
+                     "'], capture_output=True, text=True)\n"
+                     "sys.stdout.write(run.stdout)\n"
+                     "sys.exit(run.returncode)\n");
+    const std::vector<std::string> grid = {"sweep",
+                                           "drop-box",
+                                           "--root",
+                                           root,
+                                           "--quiet",
+                                           "--no-box2d",
+                                           "--no-references",
+                                           "--dt",
+                                           "0.01,0.005",
+                                           "--integrator",
+                                           "rk4,euler,verlet",
+                                           "--toi-tolerance",
+                                           "1e-6,1e-9",
+                                           "--repeats",
+                                           "1"};
+    std::vector<std::string> fixed = grid;
+    fixed.insert(fixed.end(), {"--engine", "fixed", "--engine-command", "python3 " + script});
+    const test::Outcome o = run_tool(fixed);
+    INFO(o.out << o.err);
+    REQUIRE(o.exit_code == 0);
+    // The first dt's 6 points show it; the second dt runs rk4 at 1e-6 alone.
+    CHECK(o.out.find("2 points measured, 0 failed, 10 skipped") != std::string::npos);
+    CHECK(o.out.find("skipped 8 points: fixed gave the same trajectory under every integrator at "
+                     "dt 0.01 (it ignores solver.integrator, or it changes nothing here), so "
+                     "only rk4 is run") != std::string::npos);
+    CHECK(o.out.find("skipped 2 points: fixed gave the same trajectory under every toi_tolerance "
+                     "at dt 0.01") != std::string::npos);
+    CHECK(occurrences(impulse::test::slurp(dir.dir / "calls"), "run\n") == 7);
+
+    // An engine that honours the integrator (the built tool itself) keeps
+    // each: euler, verlet and rk4 follow a fall differently. (Its search for
+    // drop-box's impacts ends on the same bits at 1e-6 s and 1e-9 s, so a
+    // tolerance grid of those two would rightly be one run here too.)
+    std::vector<std::string> honest = grid;
+    *std::find(honest.begin(), honest.end(), "1e-6,1e-9") = "1e-9";
+    honest.insert(honest.end(), {"--engine", "wrapped", "--engine-command",
+                                 impulse::test::tool_under_test() + " run --quiet"});
+    const test::Outcome h = run_tool(honest);
+    INFO(h.out << h.err);
+    REQUIRE(h.exit_code == 0);
+    CHECK(h.out.find("6 points measured, 0 failed\n") != std::string::npos);
+    CHECK(h.out.find("skipped") == std::string::npos);
+}

@@ -3,12 +3,14 @@
 #include "engine.h"
 #include "engine_failure.h"
 #include "expectations.h"
+#include "ignored_overrides.h"
 #include "input_error.h"
 #include "number_format.h"
 #include "record.h"
 #include "run.h"
 #include "simulator.h"
 #include "single_precision.h"
+#include "sweep_grid.h"
 #include "sweep_measures.h"
 #include "text.h"
 #include "tunnelling.h"
@@ -183,28 +185,6 @@ void measure_engine(const EngineSpec& engine, const Scene& scene, SweepPoint& po
 
 } // namespace
 
-SweepConfig default_sweep_config(const Scene& scene) {
-    SweepConfig config;
-    for (const double hz : {30.0, 60.0, 120.0, 240.0, 480.0, 960.0}) {
-        if (1.0 / hz <= scene.duration) {
-            config.dts.push_back(1.0 / hz);
-        }
-    }
-    config.integrators = {Integrator::euler, Integrator::symplectic_euler, Integrator::verlet,
-                          Integrator::rk4};
-    config.toi_methods = {TimeOfImpactMethod::bisection, TimeOfImpactMethod::secant};
-    config.toi_tolerances = {1e-6, 1e-9, 1e-12};
-    config.box2d_substeps = {1, 4};
-    config.box2d_iterations = {{8, 3}, {30, 10}};
-    // A pile stepped by time-stepping from its start has no time-of-impact
-    // search: the toi method and tolerance would only repeat each point.
-    if (is_pile_scene(scene) && time_stepping_from_start(scene.solver)) {
-        config.toi_methods = {scene.solver.toi};
-        config.toi_tolerances = {scene.solver.toi_tolerance};
-    }
-    return config;
-}
-
 const char* sweep_cost_name(SweepCost cost) {
     switch (cost) {
     case SweepCost::engine_reported:
@@ -252,114 +232,6 @@ void require_box2d_can_run(const Scene& scene, const SweepConfig& config) {
     (void)scene;
     (void)config;
 #endif
-}
-
-// ccd sweeps every pair's whole motion at once; local stepping looks at one
-// pair at a time (the scene loader refuses the two together).
-std::vector<bool> ccd_settings(const Scene& scene, const SweepConfig& config) {
-    std::vector<bool> ccds = config.ccd.empty() ? std::vector<bool>{scene.solver.ccd} : config.ccd;
-    const bool any_ccd = std::find(ccds.begin(), ccds.end(), true) != ccds.end();
-    if (any_ccd && scene.solver.stepping == Stepping::local) {
-        throw InputError(scene.file, "solver.stepping",
-                         "ccd on is not available with \"stepping\": \"local\" in this version "
-                         "(local stepping looks at one pair at a time); sweep with --ccd off, "
-                         "or use \"stepping\": \"world\"");
-    }
-    return ccds;
-}
-
-// The grid. ccd varies fastest, so a point with it sits next to the same
-// point without.
-std::vector<SweepPoint> impulse_points(const SweepConfig& config, const std::vector<bool>& ccds) {
-    std::vector<SweepPoint> points;
-    for (const double dt : config.dts) {
-        for (const Integrator integrator : config.integrators) {
-            for (const TimeOfImpactMethod toi : config.toi_methods) {
-                for (const double tolerance : config.toi_tolerances) {
-                    for (const bool ccd : ccds) {
-                        SweepPoint p;
-                        p.dt = dt;
-                        p.integrator = integrator;
-                        p.toi = toi;
-                        p.toi_tolerance = tolerance;
-                        p.ccd = ccd;
-                        p.family = sweep_family(p);
-                        points.push_back(p);
-                    }
-                }
-            }
-        }
-    }
-    return points;
-}
-
-// Another engine's grid: what reaches it as a modified scene (dt, integrator,
-// toi_tolerance), the scene's own toi method and ccd.
-std::vector<SweepPoint> engine_points(const SweepConfig& config, const Scene& scene) {
-    std::vector<SweepPoint> points;
-    for (const double dt : config.dts) {
-        for (const Integrator integrator : config.integrators) {
-            for (const double tolerance : config.toi_tolerances) {
-                SweepPoint p;
-                p.kind = config.engine.kind;
-                p.engine = config.engine.name;
-                p.dt = dt;
-                p.integrator = integrator;
-                p.toi = scene.solver.toi;
-                p.toi_tolerance = tolerance;
-                p.ccd = scene.solver.ccd;
-                p.family = sweep_family(p);
-                points.push_back(p);
-            }
-        }
-    }
-    return points;
-}
-
-// Box2D's points, after the impulse engine's (none in a build without Box2D).
-void add_box2d_points(const SweepConfig& config, std::vector<SweepPoint>& points) {
-#ifdef IMPULSE_WITH_BOX2D
-    if (config.box2d) {
-        for (const double dt : config.dts) {
-            for (const int substeps : config.box2d_substeps) {
-                for (const auto& [velocity, position] : config.box2d_iterations) {
-                    SweepPoint p;
-                    p.box2d = true;
-                    p.dt = dt;
-                    p.substeps = substeps;
-                    p.velocity_iterations = velocity;
-                    p.position_iterations = position;
-                    p.family = sweep_family(p);
-                    points.push_back(p);
-                }
-            }
-        }
-    }
-#else
-    (void)config;
-    (void)points;
-#endif
-}
-
-// Every other reference's points, after Box2D's: its own settings, or each of
-// its sub-step counts, at every dt.
-void add_reference_points(const SweepConfig& config, std::vector<SweepPoint>& points) {
-    for (const SweepReference& reference : config.references) {
-        const std::vector<int> substeps =
-            reference.substeps.empty() ? std::vector<int>{0} : reference.substeps;
-        for (const double dt : config.dts) {
-            for (const int n : substeps) {
-                SweepPoint p;
-                p.kind = reference.spec.kind;
-                p.engine = reference.name;
-                p.reference = reference.name;
-                p.dt = dt;
-                p.substeps = n;
-                p.family = sweep_family(p);
-                points.push_back(p);
-            }
-        }
-    }
 }
 
 // The reference's engine as one point runs it: `--substeps N` before the
@@ -502,6 +374,47 @@ std::size_t dynamic_bodies(const Scene& scene) {
                                                   [](const SceneBody& b) { return !b.is_static; }));
 }
 
+// Measures every point in order. For an outside engine under study, the
+// first time step's runs show which grid settings it ignores (their
+// trajectories are identical), and the later points that would only repeat
+// one run are skipped with the reason (ignored_overrides.h).
+template <typename Measure>
+void measure_points(const Scene& scene, const SweepConfig& config, double cost_scale,
+                    const Measure& error_of, const SweepProgress& progress,
+                    std::vector<SweepPoint>& points) {
+    const bool outside_engine = config.engine.kind != EngineSpec::Kind::impulse;
+    FirstStepRuns first{config.integrators.size(), config.toi_tolerances.size(), {}};
+    first.digests.assign(outside_engine ? first.integrators * first.tolerances : 0, 0);
+    const auto measured = [&](const Trajectory& t, SweepPoint& point) {
+        error_of(t, point);
+        const auto index = static_cast<std::size_t>(&point - points.data());
+        if (index < first.digests.size()) {
+            first.digests[index] = digest_of(t);
+        }
+    };
+    const std::size_t total = points.size();
+    for (std::size_t i = 0; i < total; ++i) {
+        SweepPoint& point = points[i];
+        if (point.skipped) {
+            // a repeat of another point (skip_repeated_points)
+        } else if (point.box2d || point.kind == EngineSpec::Kind::impulse) {
+            measure(scene, point, config.repeats, error_of);
+        } else if (!point.reference.empty()) {
+            measure_engine(reference_spec(config, point), scene, point, config.repeats, error_of);
+        } else {
+            measure_engine(config.engine, scene, point, config.repeats, measured);
+        }
+        point.cost_median *= cost_scale;
+        point.cost_spread *= cost_scale;
+        if (i + 1 == first.digests.size()) {
+            skip_repeated_points(points, config, ignored_overrides(first));
+        }
+        if (progress) {
+            progress(i + 1, total, point);
+        }
+    }
+}
+
 } // namespace
 
 SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
@@ -553,22 +466,7 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
                                                : error_against_reference(basis.reference, t);
         }
     };
-    const std::size_t total = result.points.size();
-    for (std::size_t i = 0; i < total; ++i) {
-        SweepPoint& point = result.points[i];
-        if (point.box2d || point.kind == EngineSpec::Kind::impulse) {
-            measure(scene, point, config.repeats, error_of);
-        } else if (!point.reference.empty()) {
-            measure_engine(reference_spec(config, point), scene, point, config.repeats, error_of);
-        } else {
-            measure_engine(config.engine, scene, point, config.repeats, error_of);
-        }
-        point.cost_median *= cost_scale;
-        point.cost_spread *= cost_scale;
-        if (progress) {
-            progress(i + 1, total, point);
-        }
-    }
+    measure_points(scene, config, cost_scale, error_of, progress, result.points);
     mark_fronts(result.points);
     result.cost_source = cost_source(config, result.points);
     return result;
