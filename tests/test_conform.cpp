@@ -9,6 +9,7 @@
 #include "conformance.h"
 #include "scene.h"
 #include "support/files.h"
+#include "support/outcome.h"
 #include "support/tool.h"
 
 #include <algorithm>
@@ -411,11 +412,13 @@ TEST_CASE("conform tells a subtly wrong engine from a correct one", "[conform-ex
     INFO(wrong.out << wrong.err);
     CHECK(wrong.exit_code == 1);
     CHECK(wrong.out.find("FAILED  drop-box") != std::string::npos);
-    CHECK(wrong.out.find("NO expectations[0] drop of 'box': impact 1 rebound speed") !=
-          std::string::npos);
-    CHECK(wrong.out.find("NO expectations[0] drop of 'box': impact 1 apex gap") !=
-          std::string::npos);
-    CHECK(wrong.out.find("NO expectations[0] drop of 'box': impact 2 time") == std::string::npos);
+    // Each failed check's reason right under its row; none under a passed one.
+    const std::size_t section = wrong.out.find("\ndrop-box (");
+    REQUIRE(section != std::string::npos);
+    const std::string drop_box_rows = wrong.out.substr(section);
+    CHECK(line_after(drop_box_rows, "impact 1 rebound speed ").rfind("NO: off by 0.35", 0) == 0);
+    CHECK(line_after(drop_box_rows, "impact 1 apex gap ").rfind("NO: off by ", 0) == 0);
+    CHECK(line_after(drop_box_rows, "impact 2 time ").rfind("impact 2 rebound speed ", 0) == 0);
     CHECK(wrong.out.find("skipped drop-circle ") != std::string::npos);
     CHECK(count_of(wrong.out, "\n  skipped ") == conformance_names().size() - 1);
     CHECK(wrong.out.find("unsupported by wrong: only drop-box is recorded") != std::string::npos);

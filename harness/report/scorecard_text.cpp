@@ -2,6 +2,7 @@
 #include "input_error.h"
 #include "number_format.h"
 #include "scorecard.h"
+#include "svg.h"
 #include "text.h"
 
 #include <algorithm>
@@ -142,6 +143,20 @@ std::string engine_tally(const EngineScore& e) {
                : e.engine + " " + tally(e, true);
 }
 
+// Under a failed check's row, in the table that has its NO: why, wrapped
+// to the table's width (an outside review found the sentence, the only
+// word on a check without numbers, listed far below its row).
+void write_reason(std::string& out, const ExpectationResult* mine) {
+    if (mine == nullptr || mine->passed) {
+        return;
+    }
+    const std::string margin(indent + 2, ' ');
+    const std::string why = mine->detail.empty() ? mine->what : mine->detail;
+    for (const std::string& line : picture::wrap("NO: " + why, table_width - margin.size())) {
+        out += margin + line + "\n";
+    }
+}
+
 // Numbers right-aligned in columns as wide as their widest cell; the check's
 // label gets what is left of the 100 columns, and a longer label a line of
 // its own above its numbers. `header` names the columns of cells_of from
@@ -196,6 +211,9 @@ void write_checks(std::string& out, const SceneScore& scene, const std::vector<R
         } else {
             line(text, cells[i]);
         }
+        if (first == 0) {
+            write_reason(out, rows[i].by_engine.front());
+        }
     }
 }
 
@@ -217,12 +235,6 @@ void write_scene(std::string& out, const Scorecard& card, const SceneScore& scen
             write_checks(out, scene, rows, header);
             out += "  for scale, each reference's abs err on the same checks:\n";
             write_checks(out, scene, rows, card.references, header.size());
-        }
-    }
-    for (const ExpectationResult& r : scene.engines.front().results) {
-        if (!r.passed) {
-            out +=
-                "  NO " + r.path + " " + r.what + (r.detail.empty() ? "" : ": " + r.detail) + "\n";
         }
     }
 }

@@ -4,6 +4,7 @@
 
 #include "tool.h"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <string>
 
@@ -28,6 +29,23 @@ inline void require_one_sentence(const Outcome& o) {
 
 inline bool has(const std::string& text, const std::string& part) {
     return text.find(part) != std::string::npos;
+}
+
+// The line after the first line of `text` that begins, after its spaces,
+// with `start`, without its leading spaces; "" when there is none.
+inline std::string line_after(const std::string& text, const std::string& start) {
+    std::size_t at = 0;
+    while (at < text.size()) {
+        const std::size_t end = std::min(text.find('\n', at), text.size());
+        const std::size_t first = text.find_first_not_of(' ', at);
+        if (first < end && text.compare(first, start.size(), start) == 0 && end < text.size()) {
+            const std::size_t next_end = std::min(text.find('\n', end + 1), text.size());
+            const std::size_t next = std::min(text.find_first_not_of(' ', end + 1), next_end);
+            return text.substr(next, next_end - next);
+        }
+        at = end + 1;
+    }
+    return "";
 }
 
 } // namespace impulse::test
