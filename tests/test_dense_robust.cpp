@@ -429,3 +429,39 @@ TEST_CASE("an island whose masses span 1e14 stops with a sentence naming the mas
     CHECK(has(o.err, "its masses span a ratio of 1e+14 ('d0', 1e+07 kg, to 'd1', 1e-07 kg)"));
     CHECK(has(o.err, "bring those masses closer, or use a smaller dt"));
 }
+
+TEST_CASE("an island stopped by a body of almost no inertia names that inertia", "[dense-robust]") {
+    // A 2 kg box of 1 x 0.5 m given an inertia of 1e-19 kg m^2, dropped
+    // tilted: Eq. 9's denominator 1/m + (r x n)^2 / I is then all spin, its
+    // 1/m rounded away, and the island's problem goes unsolved. The sentence
+    // names the inertia against m R^2 = 2 (0.5^2 + 0.25^2) = 0.625 kg m^2 and
+    // the uniform box's m (w^2 + h^2) / 12 = 2 (1 + 0.25) / 12 = 0.208 kg m^2,
+    // before it offers dt; with a real inertia the same drop completes.
+    const TempDir tmp;
+    const std::string body_start =
+        R"({"name": "spinless", "shape": {"box": [0.5, 0.25]}, "mass": 2, "angle": 0.4, )"
+        R"("position": [0, 1], "inertia": )";
+    const auto scene = [&](const std::string& inertia) {
+        return R"({"schema": "impulse/scene@1", "name": "spinless", "gravity": [0, -9.81],
+            "restitution": 0.3, "dt": 0.01, "duration": 1.5,
+            "solver": {"integrator": "verlet", "resting": true}, "bodies": [
+            {"name": "floor", "static": true, "shape": {"box": [20, 0.5]}, "position": [0, -0.5]},
+            )" +
+               body_start + inertia + "}]}";
+    };
+    const std::filesystem::path path = tmp.dir / "spinless.json";
+    spit(path, scene("1e-19"));
+    const Outcome o = run_tool({"run", path.string(), "--out", (tmp.dir / "out.json").string()});
+    INFO(o.err);
+    CHECK(o.exit_code == 2);
+    CHECK(o.err.rfind(path.string() + ": the contact problem of the island", 0) == 0);
+    CHECK(has(o.err, ": the moment of inertia of 'spinless', 1e-19 kg m^2, is 1.6e-19 of m R^2 = "
+                     "0.625 kg m^2"));
+    CHECK(has(o.err, "give it a larger \"inertia\" (a uniform body of its shape and mass has "
+                     "0.208 kg m^2), or use a smaller dt"));
+
+    spit(path, scene("0.2"));
+    const Outcome real = run_tool({"run", path.string(), "--out", (tmp.dir / "out.json").string()});
+    INFO(real.err);
+    CHECK(real.exit_code == 0);
+}
