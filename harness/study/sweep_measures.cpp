@@ -76,7 +76,7 @@ bool is_exact_kind(Expectation::Kind kind) {
            kind == Expectation::Kind::head_on;
 }
 
-double relative(double actual, double expected) {
+double relative_error(double actual, double expected) {
     const double off = std::abs(actual - expected);
     if (!std::isfinite(off)) {
         return std::numeric_limits<double>::infinity();
@@ -95,7 +95,7 @@ double error_against_exact(const Scene& exact_only, const Trajectory& trajectory
         if (!r.passed && r.expected == 0.0 && r.actual == 0.0) {
             return std::numeric_limits<double>::infinity();
         }
-        worst = std::max(worst, relative(r.actual, r.expected));
+        worst = std::max(worst, relative_error(r.actual, r.expected));
     }
     return worst;
 }
@@ -110,7 +110,7 @@ double error_against_reference(const Trajectory& reference, const Trajectory& tr
     const std::vector<double>& r = reference.frames.back();
     double worst = 0.0;
     for (std::size_t i = 1; i < a.size() && i < r.size(); ++i) {
-        worst = std::max(worst, relative(a[i], r[i]));
+        worst = std::max(worst, relative_error(a[i], r[i]));
     }
     return worst;
 }
