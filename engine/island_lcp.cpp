@@ -21,7 +21,7 @@ IslandSolve solve_directly(World& world, IslandProblem& problem) {
             problem.A[j * n + i] = problem.A[i * n + j];
         }
     }
-    const LcpSolution solution = solve_lcp(problem.A, problem.q);
+    const LcpSolution solution = solve_lcp(problem.A, problem.q, {}, problem.lambda);
     result.solved = solution.solved;
     problem.lambda.assign(n, 0.0);
     if (solution.solved) {

@@ -34,7 +34,8 @@ struct IslandSolve {
 
 // Solves w = A lambda + q >= 0, lambda >= 0, lambda . w = 0 over problem.points
 // (A = J M^-1 J^T at the bodies' current states) into problem.lambda, which
-// holds the warm start on entry (used by the iterative solver only).
+// holds the warm start on entry (the iterative solvers' first iterate, the
+// pivoting solver's first active set).
 // tolerance is the iterative solver's residual bound (a velocity);
 // cap_factor multiplies the iterative solver's product cap (the overlap
 // guard's problems take a larger one, overlap_guard.h).

@@ -22,7 +22,6 @@
 #include <cstddef>
 
 namespace impulse {
-
 namespace {
 
 using Eigen::Index;
@@ -181,21 +180,21 @@ double unit_of(const std::vector<double>& A, std::size_t n) {
     return delassus_unit(largest);
 }
 LcpSolution solve_unit_lcp(const std::vector<double>& A, const std::vector<double>& q,
-                           const LcpSettings& settings);
+                           const LcpSettings& settings, const std::vector<double>& warm);
 
 } // namespace
 
 LcpSolution solve_lcp(const std::vector<double>& A, const std::vector<double>& q,
-                      const LcpSettings& settings) {
+                      const LcpSettings& settings, const std::vector<double>& warm) {
     const double unit = unit_of(A, q.size());
     if (unit == 1.0) {
-        return solve_unit_lcp(A, q, settings);
+        return solve_unit_lcp(A, q, settings, warm);
     }
     std::vector<double> scaled(A.size());
     for (std::size_t i = 0; i < A.size(); ++i) {
         scaled[i] = unit * A[i];
     }
-    LcpSolution solution = solve_unit_lcp(scaled, q, settings);
+    LcpSolution solution = solve_unit_lcp(scaled, q, settings, warm);
     for (double& lambda : solution.lambda) {
         lambda *= unit; // (unit A) (lambda / unit) = A lambda
     }
@@ -205,7 +204,7 @@ LcpSolution solve_lcp(const std::vector<double>& A, const std::vector<double>& q
 namespace {
 
 LcpSolution solve_unit_lcp(const std::vector<double>& A, const std::vector<double>& q,
-                           const LcpSettings& settings) {
+                           const LcpSettings& settings, const std::vector<double>& warm) {
     const Problem problem(A, q, settings);
     const Index n = problem.size();
     const auto count = static_cast<std::size_t>(n);
@@ -216,7 +215,7 @@ LcpSolution solve_unit_lcp(const std::vector<double>& A, const std::vector<doubl
     // least-index rule reaches the unique solution in finitely many pivots.
     std::vector<bool> active(count);
     for (std::size_t i = 0; i < count; ++i) {
-        active[i] = q[i] < 0.0;
+        active[i] = warm.empty() ? q[i] < 0.0 : (warm[i] > 0.0 || q[i] < 0.0);
     }
     const int max_pivots =
         settings.max_pivots > 0 ? settings.max_pivots : std::max(64, 8 * static_cast<int>(n));
