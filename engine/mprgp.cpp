@@ -105,10 +105,11 @@ double kappa_of(std::size_t n) {
     return 2.0 * static_cast<double>(n) + 8.0;
 }
 
-bool flat_descent(const std::vector<double>& p, double curvature, const Limits& limits,
+// pp = p.p, computed by the caller (inner(p, p)).
+bool flat_descent(const std::vector<double>& p, double curvature, double pp, const Limits& limits,
                   const MprgpScratch& s) {
     constexpr double eps = std::numeric_limits<double>::epsilon();
-    if (curvature > kappa_of(p.size()) * eps * limits.norm * inner(p, p)) {
+    if (curvature > kappa_of(p.size()) * eps * limits.norm * pp) {
         return false;
     }
     double slope = 0.0;
@@ -120,6 +121,11 @@ bool flat_descent(const std::vector<double>& p, double curvature, const Limits& 
         magnitude += std::fabs(s.gradient[i] * p[i]);
     }
     return decisive(slope, spread, magnitude, p.size(), limits.tolerance);
+}
+
+bool flat_descent(const std::vector<double>& p, double curvature, const Limits& limits,
+                  const MprgpScratch& s) {
+    return flat_descent(p, curvature, inner(p, p), limits, s);
 }
 
 // Candidates: rays that are not flat as they come but may be after
@@ -206,10 +212,15 @@ int flat_ray(const Limits& limits, bool& unbounded, MprgpScratch& s) {
 // (curvature 1e-7 to 4e-6), each step multiplying the impulses by 4 to 12.
 // So min(p, 0), then p's components within candidate_share of its largest
 // rising one, are tried. Returns the products made.
-int unbounded_direction(const std::vector<double>& p, double curvature, double bound, double step,
-                        const std::vector<double>& mu, const Limits& limits, bool& unbounded,
-                        MprgpScratch& s) {
-    const bool flat = flat_descent(p, curvature, limits, s);
+int unbounded_direction(const std::vector<double>& p, double curvature, double pp, double bound,
+                        double step, const std::vector<double>& mu, const Limits& limits,
+                        bool& unbounded, MprgpScratch& s) {
+    constexpr double eps = std::numeric_limits<double>::epsilon();
+    if (curvature > candidate_curvature * limits.norm * pp &&
+        curvature > kappa_of(p.size()) * eps * limits.norm * pp) {
+        return 0; // curved: neither flat nor a candidate (the common step, no pass over p)
+    }
+    const bool flat = flat_descent(p, curvature, pp, limits, s);
     if (flat && bound == infinite) {
         unbounded = true;
         return 0;
@@ -220,7 +231,6 @@ int unbounded_direction(const std::vector<double>& p, double curvature, double b
         largest = std::max(largest, -v);
         falling = std::max(falling, v);
     }
-    const double pp = inner(p, p);
     if (falling > candidate_share * largest ||
         !(flat || (curvature <= candidate_curvature * limits.norm * pp &&
                    step * std::sqrt(pp) >= std::sqrt(inner(mu, mu))))) {
@@ -376,15 +386,27 @@ int proportioning(std::vector<double>& lambda, const Limits& limits, bool& unbou
     return 1;
 }
 
-// The largest step along -p that keeps lambda >= 0.
-double feasible_step(const std::vector<double>& lambda, const std::vector<double>& p) {
-    double step = infinite;
+// What a free step reads from its direction p and the product A^ p, in one
+// pass: each sum in index order, so the bits are inner()'s.
+struct DirectionSums {
+    double curvature = 0.0;  // p.A^p
+    double slope = 0.0;      // gradient.p
+    double length2 = 0.0;    // p.p
+    double bound = infinite; // the largest step along -p that keeps lambda >= 0
+};
+
+DirectionSums direction_sums(const std::vector<double>& lambda, const MprgpScratch& s) {
+    const std::vector<double>& p = s.direction;
+    DirectionSums sums;
     for (std::size_t i = 0; i < lambda.size(); ++i) {
+        sums.curvature += p[i] * s.product[i];
+        sums.slope += s.gradient[i] * p[i];
+        sums.length2 += p[i] * p[i];
         if (p[i] > 0.0) {
-            step = std::min(step, lambda[i] / p[i]);
+            sums.bound = std::min(sums.bound, lambda[i] / p[i]);
         }
     }
-    return step;
+    return sums;
 }
 
 // Expansion: along -p to the bound (the step cg would overshoot), then a
@@ -415,22 +437,21 @@ int free_step(const std::vector<double>& q, std::vector<double>& lambda, const L
               bool& fresh, bool& unbounded, MprgpScratch& s) {
     std::vector<double>& p = s.direction;
     multiply(p, s.product, s);
-    const double curvature = inner(p, s.product);
-    const double cg = curvature > 0.0 ? inner(s.gradient, p) / curvature : infinite;
-    const double bound = feasible_step(lambda, p);
-    const int tested =
-        unbounded_direction(p, curvature, bound, std::min(cg, bound), lambda, limits, unbounded, s);
+    const DirectionSums sums = direction_sums(lambda, s);
+    const double curvature = sums.curvature;
+    const double cg = curvature > 0.0 ? sums.slope / curvature : infinite;
+    const double bound = sums.bound;
+    const int tested = unbounded_direction(p, curvature, sums.length2, bound, std::min(cg, bound),
+                                           lambda, limits, unbounded, s);
     if (unbounded) {
         return 1 + tested; // before stepping: lambda and the gradient as they were
     }
     if (cg <= bound && cg < infinite) {
-        for (std::size_t i = 0; i < lambda.size(); ++i) {
-            lambda[i] = std::max(0.0, lambda[i] - cg * p[i]);
-            s.gradient[i] -= cg * s.product[i];
-        }
         // p = phi - beta p with beta = phi . A p / p . A p: A-conjugate to p.
         double phi_ap = 0.0;
         for (std::size_t i = 0; i < lambda.size(); ++i) {
+            lambda[i] = std::max(0.0, lambda[i] - cg * p[i]);
+            s.gradient[i] -= cg * s.product[i];
             phi_ap += lambda[i] > 0.0 ? s.gradient[i] * s.product[i] : 0.0;
         }
         const double beta = phi_ap / curvature;
