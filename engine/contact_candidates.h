@@ -41,6 +41,10 @@ void find_pairs_around(World& world, double grow, TimeSteppingScratch& s);
 // corners.
 Aabb swept_box(const World& world, std::size_t b, const BodyState& start, double turn);
 
+// Files the swept boxes of s.outran (from s.swept) in s.outran_grid, for
+// meets_unheld; once per attempt, after the list is complete.
+void file_outran(TimeSteppingScratch& s);
+
 // Whether body b, which ended the step further from its start than its reach
 // (its box in s.boxes was grown for less), may have touched a body the step
 // held no point with. Its swept box (start and end poses, grown by its
@@ -49,7 +53,7 @@ Aabb swept_box(const World& world, std::size_t b, const BodyState& start, double
 // one that did not (outran lists them, is_outran[k] != 0 flags them). Yes when the boxes meet and
 // the pair is no candidate, or when it is and its manifold at the end poses has a point deeper than
 // d (a point farther apart at the start than the pair's reach, not held). s.grid and s.pairs are
-// the step's; swept and is_outran are per body.
+// the step's; swept and is_outran are per body; s.outran_grid is file_outran's.
 bool meets_unheld(World& world, int b, const std::vector<int>& outran,
                   const std::vector<Aabb>& swept, const std::vector<char>& is_outran,
                   TimeSteppingScratch& s);

@@ -335,6 +335,7 @@ bool TimeStep::outran_reach() {
             s_.swept[b] = swept_box(world_, b, s_.start[b], turn);
         }
     }
+    file_outran(s_);
     bool retry = false;
     for (const int i : s_.outran) {
         if (meets_unheld(world_, i, s_.outran, s_.swept, s_.is_outran, s_)) {

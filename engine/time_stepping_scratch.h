@@ -100,6 +100,11 @@ struct TimeSteppingScratch {
     std::vector<int> outran;
     std::vector<char> is_outran;
     std::vector<Aabb> swept;
+    // The outran bodies' swept boxes, filed under their index in outran
+    // (file_outran), so that meeting one another costs a grid query, not a
+    // pass over the list for each of them.
+    std::vector<Aabb> outran_boxes;
+    UniformGrid outran_grid;
     UniformGrid grid;
     std::vector<CandidatePair> pairs; // sorted by (a, b)
     // Every candidate point of the step, in (a, b, k) order; a point's `pair`
