@@ -28,8 +28,13 @@ TEST_CASE("the larger sweep: 48 seeded random piles keep every invariant",
 // with no impact, hence no physical loss, and only the method's first-order
 // damping and the energy guard's return to x_k end it (docs/engine.md, "Dense
 // contact", "Coming to rest"). rest_budget is the simulated time these tests
-// grant, a test budget, not a derived bound.
-constexpr double rest_budget = 60.0;
+// grant, a test budget, not a derived bound. It was 60 s until the pivoting
+// solver started from the last step's active set (lcp.h): that changed a
+// choice between two answers equal within the solver's tolerance, and seed
+// 8 of the seeded piles (7 bodies, e = 0.9) went from rest at 13.2 s to rest
+// at 63.7 s (its kinetic energy 1.2e-9 of the energy released at 61 s), while
+// the other 31 piles moved by -3.7 s to +5.1 s (measured, before and after).
+constexpr double rest_budget = 90.0;
 
 TEST_CASE("seeded random piles come to rest within the rest budget", "[.][dense-contact-rest]") {
     for (const PileCase& pile : sweep_cases(8, 1)) {
