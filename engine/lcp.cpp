@@ -22,6 +22,7 @@
 #include <cstddef>
 
 namespace impulse {
+
 namespace {
 
 using Eigen::Index;
@@ -210,9 +211,11 @@ LcpSolution solve_unit_lcp(const std::vector<double>& A, const std::vector<doubl
     const auto count = static_cast<std::size_t>(n);
 
     // Principal pivoting from the points with q_i < 0 (for contacts: the
-    // approaching ones), which is the answer when the points do not interact.
-    // For a P-matrix (A positive definite: independent points) Murty's
-    // least-index rule reaches the unique solution in finitely many pivots.
+    // approaching ones), which is the answer when the points do not interact,
+    // and those a warm guess has pushing (a resting contact's set barely
+    // changes from step to step). For a P-matrix (A positive definite:
+    // independent points) Murty's least-index rule reaches the unique
+    // solution in finitely many pivots from any starting set.
     std::vector<bool> active(count);
     for (std::size_t i = 0; i < count; ++i) {
         active[i] = warm.empty() ? q[i] < 0.0 : (warm[i] > 0.0 || q[i] < 0.0);

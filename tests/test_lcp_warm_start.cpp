@@ -79,8 +79,8 @@ TEST_CASE("Warm and cold pivoting agree on random contact problems", "[unit][lcp
             scale = std::max(scale, std::fabs(v));
         }
         std::vector<double> guess(p.points.size());
-        for (double& g : guess) {
-            g = rng() % 2 == 0 ? 0.0 : 1.0;
+        for (double& entry : guess) {
+            entry = rng() % 2 == 0 ? 0.0 : 1.0;
         }
         for (const std::vector<double>& start : {cold.lambda, guess}) {
             const LcpSolution warm = solve_lcp(A, p.q, {}, start);
