@@ -105,11 +105,17 @@ double kappa_of(std::size_t n) {
     return 2.0 * static_cast<double>(n) + 8.0;
 }
 
+// Whether p.Ap (pp = p.p) is more than the rounding of its computation: a
+// direction curved so is not flat.
+bool curved(std::size_t n, double curvature, double pp, const Limits& limits) {
+    constexpr double eps = std::numeric_limits<double>::epsilon();
+    return curvature > kappa_of(n) * eps * limits.norm * pp;
+}
+
 // pp = p.p, computed by the caller (inner(p, p)).
 bool flat_descent(const std::vector<double>& p, double curvature, double pp, const Limits& limits,
                   const MprgpScratch& s) {
-    constexpr double eps = std::numeric_limits<double>::epsilon();
-    if (curvature > kappa_of(p.size()) * eps * limits.norm * pp) {
+    if (curved(p.size(), curvature, pp, limits)) {
         return false;
     }
     double slope = 0.0;
@@ -215,9 +221,8 @@ int flat_ray(const Limits& limits, bool& unbounded, MprgpScratch& s) {
 int unbounded_direction(const std::vector<double>& p, double curvature, double pp, double bound,
                         double step, const std::vector<double>& mu, const Limits& limits,
                         bool& unbounded, MprgpScratch& s) {
-    constexpr double eps = std::numeric_limits<double>::epsilon();
     if (curvature > candidate_curvature * limits.norm * pp &&
-        curvature > kappa_of(p.size()) * eps * limits.norm * pp) {
+        curved(p.size(), curvature, pp, limits)) {
         return 0; // curved: neither flat nor a candidate (the common step, no pass over p)
     }
     const bool flat = flat_descent(p, curvature, pp, limits, s);

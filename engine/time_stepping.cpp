@@ -335,6 +335,9 @@ bool TimeStep::outran_reach() {
             s_.swept[b] = swept_box(world_, b, s_.start[b], turn);
         }
     }
+    if (s_.outran.empty()) {
+        return false; // the common step: no grid to build
+    }
     file_outran(s_);
     bool retry = false;
     for (const int i : s_.outran) {

@@ -16,18 +16,6 @@
 using namespace impulse;
 using namespace impulse::test::contact_problems;
 
-namespace {
-
-std::vector<double> row_major(const std::vector<std::vector<double>>& rows) {
-    std::vector<double> a;
-    for (const std::vector<double>& row : rows) {
-        a.insert(a.end(), row.begin(), row.end());
-    }
-    return a;
-}
-
-} // namespace
-
 TEST_CASE("A warm guess of the active set: the same answer, fewer pivots", "[unit][lcp]") {
     // The three-ball cradle's problem: [[2, -1], [-1, 2]], q = (-2, 0). Started
     // from the approaching point 0 alone (lambda 1), w_1 = -1 pulls point 1

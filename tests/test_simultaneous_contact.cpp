@@ -3,6 +3,7 @@
 #include "contact_simultaneous.h"
 #include "lcp.h"
 #include "support.h"
+#include "support/contact_problems.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -17,6 +18,7 @@ using impulse::test::dynamic_body;
 using impulse::test::log_uniform;
 using impulse::test::static_body;
 using impulse::test::uniform;
+using impulse::test::contact_problems::row_major;
 
 namespace {
 
@@ -89,14 +91,6 @@ World cradle(int balls, double mass, double v) {
     }
     SolverSettings s = simultaneous_verlet();
     return make_world(bodies, {0.0, 0.0}, 1.0, s);
-}
-
-std::vector<double> row_major(std::initializer_list<std::initializer_list<double>> rows) {
-    std::vector<double> out;
-    for (const auto& row : rows) {
-        out.insert(out.end(), row.begin(), row.end());
-    }
-    return out;
 }
 
 } // namespace

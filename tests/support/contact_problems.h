@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <initializer_list>
 #include <random>
 #include <vector>
 
@@ -52,6 +53,15 @@ inline void number_pairs(Problem& p) {
         }
         point.pair = index;
     }
+}
+
+// A dense matrix written row by row, as the pivoting solver takes it (lcp.h).
+inline std::vector<double> row_major(std::initializer_list<std::initializer_list<double>> rows) {
+    std::vector<double> out;
+    for (const auto& row : rows) {
+        out.insert(out.end(), row.begin(), row.end());
+    }
+    return out;
 }
 
 // A x for a dense n x n matrix A, row-major.
